@@ -1,0 +1,80 @@
+// Static equilibrium R(u, lambda) = 0 by KINSOL's Newton iteration on a CHOLMOD factor.
+//
+// The unknowns are the free displacements; R is the out-of-balance force (internal minus
+// external) on them, and its Jacobian is the tangent stiffness K. KINSOL drives the
+// iteration; its linear solver is our own SUNLinearSolver whose setup factorizes K with
+// CHOLMOD (symbolic analysis reused) and whose solve back-substitutes. The stopping test
+// is max |R| <= tolerance * max |R(0, lambda)|: the residual relative to the load.
+//
+// With a linear bond law and a fixed set of intact bonds the path is affine,
+// u(lambda) = u_g + lambda u_e; affine_path() factorizes once and solves the gravity and
+// the unit-extension right-hand sides together.
+#pragma once
+
+#include <memory>
+
+#include "latfrac/cholesky.h"
+#include "latfrac/model.h"
+#include "latfrac/scene.h"
+#include "latfrac/stiffness.h"
+
+namespace latfrac {
+
+struct EquilibriumReport {
+  long newton_iterations = 0;
+  long residual_evaluations = 0;
+  double relative_residual = 0;  // max |R| / max |R(0, lambda)|
+};
+
+// Free displacements along an affine path: u(lambda) = gravity + lambda * extension.
+struct AffinePath {
+  Vector gravity;
+  Vector extension;
+  Vector at(double lambda) const { return gravity + lambda * extension; }
+};
+
+struct SolverCounters {
+  long solves = 0;          // back-substitutions with the factor (each may hold several RHS)
+  long factorizations = 0;  // numeric factorizations
+  long factor_updates = 0;  // rank updates of the factor
+};
+
+class EquilibriumSolver {
+ public:
+  EquilibriumSolver(Model& model, const SolverOptions& options);
+  ~EquilibriumSolver();
+  EquilibriumSolver(const EquilibriumSolver&) = delete;
+  EquilibriumSolver& operator=(const EquilibriumSolver&) = delete;
+
+  // Newton from the given free displacement (updated in place) at extension strain lambda.
+  // Throws Error naming the KINSOL or CHOLMOD call when it fails.
+  EquilibriumReport solve(double lambda, Vector& free_displacement);
+
+  // Requires a linear bond law. One factorization, one two-column solve.
+  AffinePath affine_path();
+
+  // Call after changing the model's stiffness (a broken bond): the factor is stale.
+  void stiffness_changed() { factor_current_ = false; }
+
+  // max |R(0, lambda)|: the size of the load at lambda, N.
+  double load_scale(double lambda) const;
+
+  const SolverCounters& counters() const { return counters_; }
+  StiffnessMatrix& stiffness() { return stiffness_; }
+  CholeskyFactor& factor() { return factor_; }
+
+ private:
+  struct Kinsol;
+  friend struct Kinsol;
+  void refactorize(const Vector& free_displacement, double lambda);
+
+  Model& model_;
+  SolverOptions options_;
+  StiffnessMatrix stiffness_;
+  CholeskyFactor factor_;
+  bool factor_current_ = false;
+  SolverCounters counters_;
+  std::unique_ptr<Kinsol> kinsol_;
+};
+
+}  // namespace latfrac

@@ -1,0 +1,65 @@
+// The mechanical model of a scene: lattice, bond springs, supports, loads and the bond law.
+//
+// Degrees of freedom are numbered node * dim + c, where c runs over lattice.axes(). A
+// degree of freedom is either free or prescribed; a prescribed one follows
+// u = base + lambda * rate (walls move with the extension strain lambda). Free ones are
+// numbered 0 .. free_count - 1 in the same order, which keeps the stiffness matrix's
+// node blocks contiguous.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "latfrac/bond_law.h"
+#include "latfrac/lattice.h"
+#include "latfrac/scene.h"
+
+namespace latfrac {
+
+using Vector = Eigen::VectorXd;
+
+struct DofMap {
+  int dim = 2;
+  std::vector<std::int64_t> free_index;  // per dof: index among free dofs, or -1 if prescribed
+  std::vector<double> prescribed_base;   // per dof, m (zero for free dofs)
+  std::vector<double> prescribed_rate;   // per dof, m per unit lambda
+  std::int64_t free_count = 0;
+
+  std::int64_t dof_count() const { return static_cast<std::int64_t>(free_index.size()); }
+};
+
+class Model {
+ public:
+  Lattice lattice;
+  std::vector<double> normal_stiffness;  // kn per bond
+  std::vector<double> shear_stiffness;   // ks per bond
+  std::vector<std::uint8_t> intact;      // per bond
+  std::vector<double> node_poisson;      // per node, for the 2-D out-of-plane stress
+  DofMap dofs;
+  Vector external_force;                 // per dof (gravity), N (2-D: N per metre)
+  std::unique_ptr<BondLaw> law;
+
+  int dim() const { return lattice.dim; }
+  // The full displacement (every dof) from the free part at extension strain lambda.
+  Vector full_displacement(const Vector& free_displacement, double lambda) const;
+  // Internal (spring) force per dof: the gradient of the stored energy.
+  Vector internal_force(const Vector& displacement) const;
+  // Out-of-balance force on the free dofs: internal minus external. Zero at equilibrium.
+  Vector residual(const Vector& free_displacement, double lambda) const;
+  // Reaction forces on the prescribed dofs (internal minus external), zero on free dofs.
+  Vector reactions(const Vector& displacement) const;
+  // The displacement of node n as a 3-vector (y = 0 in 2-D).
+  Vec3 node_displacement(const Vector& displacement, std::int64_t node) const;
+};
+
+// Builds the model: lattice, per-bond springs (layers included), the face conditions and
+// gravity. Throws InputError for parameters the lattice cannot represent.
+Model build_model(const Scene& scene);
+
+// Builds the supports of a lattice from per-face conditions.
+DofMap build_dof_map(const Lattice& lattice,
+                     const std::array<FaceCondition, face_count>& faces);
+
+}  // namespace latfrac

@@ -1,0 +1,72 @@
+// What a run produces: the data written to and read back from a result file.
+//
+// Arrays are flat and row-major so they map one-to-one onto the HDF5 datasets of
+// ../docs/result-files.md: positions N x 3, bonds M x 2, node_stress N x 6 (xx yy zz yz xz
+// xy, Pa, tension positive), displacement N x 3 (m).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace latfrac {
+
+struct Provenance {
+  std::string software = "latfrac";
+  std::string version;
+  std::string git_commit;
+  std::string command_line;
+  std::string problem;  // full problem-file text
+  std::string created;  // ISO 8601
+  std::uint64_t seed = 0;
+};
+
+// Scene facts a reader needs to interpret the arrays (and draw them).
+struct SceneInfo {
+  std::string name;
+  int dim = 2;
+  double spacing = 0;                   // m
+  std::string criterion;                // "" for an elastic scene
+  double exaggeration = 1;              // for pictures
+};
+
+struct BreakEvent {
+  double lambda = 0;
+  std::int64_t bond = 0;
+  double failure_index = 0;
+  std::int8_t mode = 0;  // 0 tensile, 1 shear, 2 pre-cut
+  std::int64_t cascade = 0;
+};
+
+struct Snapshot {
+  double lambda = 0;
+  std::vector<double> displacement;       // N x 3, m
+  std::vector<std::uint8_t> bond_intact;  // M
+  std::vector<double> bond_failure_index; // M ("bond_f" in the file)
+  std::vector<double> node_stress;        // N x 6, Pa
+};
+
+struct RunSummary {
+  std::int64_t breaks = 0;
+  double final_lambda = 0;
+  double wall_seconds = 0;
+  std::int64_t solves = 0;
+  std::int64_t factorizations = 0;
+  std::int64_t factor_updates = 0;
+};
+
+struct RunResult {
+  Provenance provenance;
+  SceneInfo scene;
+  std::vector<double> positions;        // N x 3, m
+  std::vector<std::int64_t> bonds;      // M x 2
+  std::vector<std::int8_t> bond_kind;   // M: 0 nearest, 1 next-nearest
+  std::vector<BreakEvent> events;
+  std::vector<Snapshot> snapshots;
+  RunSummary summary;
+
+  std::size_t node_count() const { return positions.size() / 3; }
+  std::size_t bond_count() const { return bond_kind.size(); }
+};
+
+}  // namespace latfrac

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages latfrac needs to build, test and run, when they are missing.
+# Safe to run repeatedly: it installs nothing when every package is already present.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config git
+  libsundials-dev            # KINSOL (Newton) and CVODE
+  libsuitesparse-dev         # CHOLMOD sparse Cholesky (with METIS)
+  libopenblas0-pthread       # fast BLAS for CHOLMOD's supernodal kernels
+  libeigen3-dev
+  libhdf5-dev                # result files
+  catch2                     # unit tests (v2)
+  libtomlplusplus-dev        # problem files
+  libcli11-dev               # command line
+  libpng-dev                 # pictures
+  mpi-default-dev            # SUNDIALS' CMake config asks for MPI
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+
+if ((${#missing[@]})); then
+  echo "install-deps: installing ${missing[*]}" >&2
+  if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=; fi
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi

@@ -1,0 +1,163 @@
+// CHOLMOD-backed sparse Cholesky: analyze once, factorize, solve many right-hand sides.
+#include "latfrac/cholesky.h"
+
+#include <suitesparse/cholmod.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "latfrac/error.h"
+
+namespace latfrac {
+
+struct CholeskyFactor::State {
+  cholmod_common common;
+  cholmod_factor* factor = nullptr;
+  cholmod_dense* solution = nullptr;
+  cholmod_dense* work_y = nullptr;
+  cholmod_dense* work_e = nullptr;
+};
+
+namespace {
+
+std::string status_text(int status) {
+  switch (status) {
+    case CHOLMOD_OK: return "ok";
+    case CHOLMOD_NOT_INSTALLED: return "method not installed";
+    case CHOLMOD_OUT_OF_MEMORY: return "out of memory";
+    case CHOLMOD_TOO_LARGE: return "integer overflow (problem too large)";
+    case CHOLMOD_INVALID: return "invalid input";
+    case CHOLMOD_GPU_PROBLEM: return "GPU problem";
+    case CHOLMOD_NOT_POSDEF: return "matrix not positive definite";
+    case CHOLMOD_DSMALL: return "tiny diagonal entry";
+  }
+  return "status " + std::to_string(status);
+}
+
+void check(const cholmod_common& common, bool ok, const char* call) {
+  if (ok && common.status == CHOLMOD_OK) return;
+  throw Error(std::string(call) + " failed: " + status_text(common.status));
+}
+
+// A CHOLMOD view of the matrix's arrays (no copy; CHOLMOD never frees it).
+cholmod_sparse view_of(StiffnessMatrix& matrix) {
+  cholmod_sparse a{};
+  a.nrow = a.ncol = static_cast<std::size_t>(matrix.size());
+  a.nzmax = static_cast<std::size_t>(matrix.nonzeros());
+  a.p = matrix.column_start().data();
+  a.i = matrix.row_index().data();
+  a.x = matrix.values().data();
+  a.stype = 1;
+  a.itype = CHOLMOD_LONG;
+  a.xtype = CHOLMOD_REAL;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = 1;
+  a.packed = 1;
+  return a;
+}
+
+}  // namespace
+
+CholeskyFactor::CholeskyFactor(Ordering ordering) : state_(std::make_unique<State>()) {
+  cholmod_common& c = state_->common;
+  if (!cholmod_l_start(&c)) throw Error("cholmod_l_start failed");
+  c.print = 0;
+  c.error_handler = nullptr;
+  c.nmethods = 1;
+  c.supernodal = CHOLMOD_SUPERNODAL;
+  switch (ordering) {
+    case Ordering::metis: c.method[0].ordering = CHOLMOD_METIS; break;
+    case Ordering::nesdis: c.method[0].ordering = CHOLMOD_NESDIS; break;
+    case Ordering::amd: c.method[0].ordering = CHOLMOD_AMD; break;
+  }
+  c.postorder = 1;
+}
+
+CholeskyFactor::~CholeskyFactor() {
+  cholmod_common& c = state_->common;
+  cholmod_l_free_factor(&state_->factor, &c);
+  cholmod_l_free_dense(&state_->solution, &c);
+  cholmod_l_free_dense(&state_->work_y, &c);
+  cholmod_l_free_dense(&state_->work_e, &c);
+  cholmod_l_finish(&c);
+}
+
+bool CholeskyFactor::analyzed() const { return state_->factor != nullptr; }
+
+void CholeskyFactor::analyze(StiffnessMatrix& matrix) {
+  cholmod_common& c = state_->common;
+  cholmod_l_free_factor(&state_->factor, &c);
+  factorized_ = false;
+  cholmod_sparse a = view_of(matrix);
+  state_->factor = cholmod_l_analyze(&a, &c);
+  check(c, state_->factor != nullptr, "cholmod_l_analyze");
+}
+
+void CholeskyFactor::factorize(StiffnessMatrix& matrix) {
+  if (!analyzed()) analyze(matrix);
+  cholmod_common& c = state_->common;
+  cholmod_sparse a = view_of(matrix);
+  factorized_ = false;
+  const int ok = cholmod_l_factorize(&a, state_->factor, &c);
+  if (c.status == CHOLMOD_NOT_POSDEF) {
+    std::ostringstream message;
+    message << "cholmod_l_factorize: the stiffness matrix is not positive definite (failed at "
+               "column "
+            << state_->factor->minor << " of " << matrix.size()
+            << "): part of the body can move without resistance (a rigid-body motion the face "
+               "conditions do not prevent, or a piece cut loose)";
+    throw Error(message.str());
+  }
+  check(c, ok, "cholmod_l_factorize");
+  // A rigid-body mode can survive roundoff as a tiny positive pivot: catch it here.
+  const double rcond = cholmod_l_rcond(state_->factor, &c);
+  if (!(rcond > 1e-14)) {
+    std::ostringstream message;
+    message << "cholmod_l_factorize: the stiffness matrix is singular to working precision "
+               "(reciprocal condition estimate "
+            << rcond << "): part of the body can move without resistance";
+    throw Error(message.str());
+  }
+  factorized_ = true;
+}
+
+void CholeskyFactor::solve(double* rhs, std::int64_t rows, int columns) {
+  if (!factorized_) throw Error("CholeskyFactor::solve called before a successful factorization");
+  cholmod_common& c = state_->common;
+  cholmod_dense b{};
+  b.nrow = static_cast<std::size_t>(rows);
+  b.ncol = static_cast<std::size_t>(columns);
+  b.nzmax = b.nrow * b.ncol;
+  b.d = b.nrow;
+  b.x = rhs;
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  const int ok = cholmod_l_solve2(CHOLMOD_A, state_->factor, &b, nullptr, &state_->solution,
+                                  nullptr, &state_->work_y, &state_->work_e, &c);
+  check(c, ok, "cholmod_l_solve2");
+  const double* x = static_cast<const double*>(state_->solution->x);
+  std::copy(x, x + b.nzmax, rhs);
+}
+
+std::int64_t CholeskyFactor::factor_nonzeros() const {
+  if (!state_->factor) return 0;
+  const cholmod_factor& f = *state_->factor;
+  if (f.is_super) {
+    // Count the nonzeros of the supernodal factor from its supernode dimensions.
+    const auto* super = static_cast<const std::int64_t*>(f.super);
+    const auto* pi = static_cast<const std::int64_t*>(f.pi);
+    std::int64_t count = 0;
+    for (std::size_t s = 0; s < f.nsuper; ++s) {
+      const std::int64_t columns = super[s + 1] - super[s], rows = pi[s + 1] - pi[s];
+      count += columns * rows - columns * (columns - 1) / 2;
+    }
+    return count;
+  }
+  return static_cast<std::int64_t>(state_->common.lnz);
+}
+
+std::int64_t CholeskyFactor::peak_memory() const {
+  return static_cast<std::int64_t>(state_->common.memory_usage);
+}
+
+}  // namespace latfrac

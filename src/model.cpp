@@ -1,0 +1,160 @@
+// Builds the mechanical model of a scene and evaluates its forces.
+#include "latfrac/model.h"
+
+#include "latfrac/calibration.h"
+#include "latfrac/error.h"
+
+namespace latfrac {
+namespace {
+
+// Which condition wins where two faces meet on one component: the most restrictive.
+int rank_of(FaceCondition condition) {
+  switch (condition) {
+    case FaceCondition::free: return 0;
+    case FaceCondition::roller: return 1;
+    case FaceCondition::extension: return 2;
+    case FaceCondition::fixed: return 3;
+  }
+  return 0;
+}
+
+const Layer* layer_at(const std::vector<Layer>& layers, double z) {
+  for (const Layer& layer : layers) {
+    if (z >= layer.z_min && z < layer.z_max) return &layer;
+  }
+  return nullptr;
+}
+
+const Material& material_at(const Scene& scene, double z) {
+  const Layer* layer = layer_at(scene.layers, z);
+  return layer ? layer->material : scene.material;
+}
+
+}  // namespace
+
+DofMap build_dof_map(const Lattice& lattice, const std::array<FaceCondition, face_count>& faces) {
+  const std::vector<int> axes = lattice.axes();
+  const int dim = lattice.dim;
+  DofMap map;
+  map.dim = dim;
+  const std::int64_t dof_count = lattice.node_count() * dim;
+  map.prescribed_base.assign(dof_count, 0.0);
+  map.prescribed_rate.assign(dof_count, 0.0);
+  std::vector<int> rank(dof_count, 0);
+  const Vec3 centre = lattice.extent / 2;
+  for (std::int64_t node = 0; node < lattice.node_count(); ++node) {
+    for (int f = 0; f < face_count; ++f) {
+      const Face face = static_cast<Face>(f);
+      const int face_axis = f / 2;
+      if (dim == 2 && face_axis == 1) continue;
+      if (!lattice.on_face(node, face)) continue;
+      const FaceCondition condition = faces[f];
+      for (int c = 0; c < dim; ++c) {
+        const bool normal = axes[c] == face_axis;
+        const bool constrains = condition == FaceCondition::fixed ||
+                                (normal && condition != FaceCondition::free);
+        const std::int64_t dof = node * dim + c;
+        if (!constrains || rank_of(condition) <= rank[dof]) continue;
+        rank[dof] = rank_of(condition);
+        map.prescribed_rate[dof] =
+            condition == FaceCondition::extension ? lattice.positions[node][face_axis] - centre[face_axis] : 0.0;
+      }
+    }
+  }
+  map.free_index.assign(dof_count, -1);
+  for (std::int64_t dof = 0; dof < dof_count; ++dof) {
+    if (rank[dof] == 0) map.free_index[dof] = map.free_count++;
+  }
+  return map;
+}
+
+Model build_model(const Scene& scene) {
+  validate_material(scene.material);
+  for (const Layer& layer : scene.layers) validate_material(layer.material, "layer");
+  Model model;
+  model.lattice = build_lattice(scene.lattice);
+  const Lattice& lattice = model.lattice;
+  const int dim = lattice.dim;
+
+  const std::int64_t bonds = lattice.bond_count();
+  model.normal_stiffness.resize(bonds);
+  model.shear_stiffness.resize(bonds);
+  model.intact.assign(bonds, 1);
+  for (std::int64_t b = 0; b < bonds; ++b) {
+    const Bond& bond = lattice.bonds[b];
+    const double mid_z = 0.5 * (lattice.positions[bond.i].z() + lattice.positions[bond.j].z());
+    const SpringConstants k = spring_constants(dim, material_at(scene, mid_z), lattice.spacing);
+    const double scale = bond.kind == BondKind::next_nearest ? next_nearest_fraction : 1.0;
+    model.normal_stiffness[b] = scale * k.normal;
+    model.shear_stiffness[b] = scale * k.shear;
+  }
+
+  model.dofs = build_dof_map(lattice, scene.faces);
+  model.external_force = Vector::Zero(model.dofs.dof_count());
+  model.node_poisson.resize(lattice.node_count());
+  for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
+    const Material& material = material_at(scene, lattice.positions[n].z());
+    model.node_poisson[n] = material.poisson;
+    if (scene.gravity) {
+      const int z_component = dim - 1;
+      model.external_force[n * dim + z_component] =
+          -material.density * scene.gravity->g * lattice.node_volume;
+    }
+  }
+  model.law = std::make_unique<SmallKinematics>();
+  return model;
+}
+
+Vector Model::full_displacement(const Vector& free_displacement, double lambda) const {
+  Vector u(dofs.dof_count());
+  for (std::int64_t dof = 0; dof < dofs.dof_count(); ++dof) {
+    const std::int64_t f = dofs.free_index[dof];
+    u[dof] = f >= 0 ? free_displacement[f]
+                    : dofs.prescribed_base[dof] + lambda * dofs.prescribed_rate[dof];
+  }
+  return u;
+}
+
+Vec3 Model::node_displacement(const Vector& displacement, std::int64_t node) const {
+  Vec3 u = Vec3::Zero();
+  const std::vector<int> axes = lattice.axes();
+  for (int c = 0; c < dim(); ++c) u[axes[c]] = displacement[node * dim() + c];
+  return u;
+}
+
+Vector Model::internal_force(const Vector& displacement) const {
+  const int d = dim();
+  const std::vector<int> axes = lattice.axes();
+  Vector force = Vector::Zero(dofs.dof_count());
+  for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
+    if (!intact[b]) continue;
+    const Bond& bond = lattice.bonds[b];
+    const Vec3 du = node_displacement(displacement, bond.j) - node_displacement(displacement, bond.i);
+    const Vec3 d0 = lattice.bond_direction[b] * lattice.bond_length[b];
+    const Vec3 t = law->tension(d0, du, normal_stiffness[b], shear_stiffness[b]);
+    for (int c = 0; c < d; ++c) {
+      force[bond.j * d + c] += t[axes[c]];
+      force[bond.i * d + c] -= t[axes[c]];
+    }
+  }
+  return force;
+}
+
+Vector Model::residual(const Vector& free_displacement, double lambda) const {
+  const Vector unbalanced = internal_force(full_displacement(free_displacement, lambda)) - external_force;
+  Vector r(dofs.free_count);
+  for (std::int64_t dof = 0; dof < dofs.dof_count(); ++dof) {
+    if (dofs.free_index[dof] >= 0) r[dofs.free_index[dof]] = unbalanced[dof];
+  }
+  return r;
+}
+
+Vector Model::reactions(const Vector& displacement) const {
+  Vector r = internal_force(displacement) - external_force;
+  for (std::int64_t dof = 0; dof < dofs.dof_count(); ++dof) {
+    if (dofs.free_index[dof] >= 0) r[dof] = 0;
+  }
+  return r;
+}
+
+}  // namespace latfrac

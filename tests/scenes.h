@@ -1,0 +1,22 @@
+// Small scenes built in code for the tests (the problem-file reader has its own tests).
+#pragma once
+
+#include "latfrac/scene.h"
+
+namespace latfrac::testing {
+
+// The paper's material: rho 2600 kg/m^3, E 100 GPa, nu 0.2.
+inline Material paper_material(double poisson = 0.2) { return {2600.0, 100e9, poisson}; }
+
+inline Scene box_scene(int dim, double spacing, std::array<double, 3> size, bool gravity) {
+  Scene scene;
+  scene.name = "test";
+  scene.lattice.dim = dim;
+  scene.lattice.spacing = spacing;
+  scene.lattice.size = size;
+  scene.material = paper_material();
+  if (gravity) scene.gravity = Gravity{9.81};
+  return scene;
+}
+
+}  // namespace latfrac::testing
