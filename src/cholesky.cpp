@@ -3,7 +3,11 @@
 
 #include <suitesparse/cholmod.h>
 
+#include <dlfcn.h>
+
 #include <cmath>
+#include <cstdlib>
+#include <mutex>
 #include <sstream>
 
 #include "latfrac/error.h"
@@ -39,6 +43,19 @@ void check(const cholmod_common& common, bool ok, const char* call) {
   throw Error(std::string(call) + " failed: " + status_text(common.status));
 }
 
+// OpenBLAS's own threads compete with CHOLMOD's supernodal kernels on a small machine:
+// on 2 cores a 3-D factorization takes twice as long with two BLAS threads as with one
+// (bench/bench_equilibrium). One BLAS thread is the default; OPENBLAS_NUM_THREADS, when
+// the user sets it, wins. Looked up at run time so any BLAS links.
+void limit_blas_threads() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    if (std::getenv("OPENBLAS_NUM_THREADS")) return;
+    using SetThreads = void (*)(int);
+    if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set(1);
+  });
+}
+
 // A CHOLMOD view of the matrix's arrays (no copy; CHOLMOD never frees it).
 cholmod_sparse view_of(StiffnessMatrix& matrix) {
   cholmod_sparse a{};
@@ -59,6 +76,7 @@ cholmod_sparse view_of(StiffnessMatrix& matrix) {
 }  // namespace
 
 CholeskyFactor::CholeskyFactor(Ordering ordering) : state_(std::make_unique<State>()) {
+  limit_blas_threads();
   cholmod_common& c = state_->common;
   if (!cholmod_l_start(&c)) throw Error("cholmod_l_start failed");
   c.print = 0;

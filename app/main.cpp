@@ -1,0 +1,182 @@
+// latfrac: the command line. run, check, analyze, render (docs/cli.md).
+//
+// Exit status: 0 success, 2 bad input (problem file or option), 1 anything else.
+#include <CLI/CLI.hpp>
+#include <latfrac_version.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+
+#include "latfrac/error.h"
+#include "latfrac/problem_file.h"
+#include "latfrac/render.h"
+#include "latfrac/result_file.h"
+#include "latfrac/run.h"
+#include "latfrac/size_estimate.h"
+#include "latfrac/xdmf.h"
+
+namespace fs = std::filesystem;
+using namespace latfrac;
+
+namespace {
+
+std::string joined(int argc, char** argv) {
+  std::string line;
+  for (int i = 0; i < argc; ++i) line += (i ? " " : "") + std::string(argv[i]);
+  return line;
+}
+
+// Refuses a problem whose estimated memory exceeds what the machine has available.
+void check_memory(const Scene& scene, bool force) {
+  const SizeEstimate estimate = estimate_size(scene);
+  const double available = available_memory_bytes();
+  if (force || available <= 0 || estimate.memory_bytes <= available) return;
+  throw InputError(scene.source_path + ": the problem needs about " +
+                   std::to_string(static_cast<long>(estimate.memory_bytes / (1 << 20))) +
+                   " MiB (" + std::to_string(estimate.nodes) + " nodes) but only " +
+                   std::to_string(static_cast<long>(available / (1 << 20))) +
+                   " MiB are available; use a larger lattice.spacing, or --force to try anyway");
+}
+
+int run_command(const std::string& problem, const std::vector<std::string>& sets, std::string out_dir,
+                bool quiet, bool force, const std::string& command_line) {
+  // 1. Read and validate the scene; refuse what cannot fit in memory.
+  const Scene scene = read_problem_file(problem, sets);
+  check_memory(scene, force);
+  if (!quiet) std::cout << describe(scene) << "\n";
+
+  // 2. Run it.
+  RunOptions options;
+  options.command_line = command_line;
+  options.progress = !quiet;
+  const RunResult result = run_scene(scene, options);
+
+  // 3. Write the result, its ParaView description and the picture; each file appears
+  //    under its final name only when complete.
+  if (out_dir.empty()) out_dir = (fs::path("out") / scene.name).string();
+  std::error_code error;
+  fs::create_directories(out_dir, error);
+  if (error) throw Error("cannot create output directory '" + out_dir + "': " + error.message());
+  const fs::path base = fs::path(out_dir) / scene.name;
+  const std::string h5 = base.string() + ".h5";
+  write_result_file(h5, result);
+  write_xdmf(base.string() + ".xmf", fs::path(h5).filename().string(), result);
+  if (scene.output.picture) render_png(result, result.snapshots.size() - 1, base.string() + ".png");
+
+  // 4. The summary.
+  if (!quiet) {
+    std::cout << summary_text(result) << "  wrote " << h5 << ", " << base.string() << ".xmf"
+              << (scene.output.picture ? ", " + base.string() + ".png" : "") << "\n";
+  }
+  return 0;
+}
+
+int check_command(const std::string& problem, const std::vector<std::string>& sets) {
+  const Scene scene = read_problem_file(problem, sets);
+  std::cout << describe(scene) << "\n" << describe(estimate_size(scene));
+  const double available = available_memory_bytes();
+  if (available > 0) std::cout << "  available memory " << available / (1 << 20) << " MiB\n";
+  const auto missing = unsupported_effects(scene);
+  for (const std::string& effect : missing) {
+    std::cout << "note: this version cannot yet simulate " << effect << "\n";
+  }
+  std::cout << "ok: " << problem << " is valid\n";
+  return 0;
+}
+
+int analyze_command(const std::string& path, bool json) {
+  const RunResult result = read_result_file(path);
+  if (json) {
+    const RunSummary& s = result.summary;
+    std::printf(
+        "{\"name\": \"%s\", \"dim\": %d, \"nodes\": %zu, \"bonds\": %zu, \"breaks\": %lld, "
+        "\"final_lambda\": %.17g, \"wall_seconds\": %.6g, \"solves\": %lld, \"factorizations\": %lld, "
+        "\"factor_updates\": %lld, \"snapshots\": %zu, \"faults\": null, "
+        "\"fault_analysis\": \"not available in this version\"}\n",
+        result.scene.name.c_str(), result.scene.dim, result.node_count(), result.bond_count(),
+        static_cast<long long>(s.breaks), s.final_lambda, s.wall_seconds, static_cast<long long>(s.solves),
+        static_cast<long long>(s.factorizations), static_cast<long long>(s.factor_updates),
+        result.snapshots.size());
+    return 0;
+  }
+  std::cout << summary_text(result)
+            << "fault analysis: not available in this version of latfrac (it needs fracture, which "
+               "comes later)\n";
+  return 0;
+}
+
+int render_command(const std::string& path, double lambda, const std::string& png, int width,
+                   double exaggeration) {
+  const RunResult result = read_result_file(path);
+  RenderOptions options;
+  options.width = width;
+  options.exaggeration = exaggeration;
+  const std::size_t index = snapshot_nearest(result, lambda);
+  render_png(result, index, png, options);
+  std::cout << "wrote " << png << " (lambda " << result.snapshots[index].lambda << ")\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"latfrac: brittle fracture in lattice models of the crust"};
+  app.require_subcommand(0, 1);
+  bool version = false;
+  app.add_flag("--version", version, "print the version and the commit it was built from");
+
+  std::string problem, result_path, out_dir, png;
+  std::vector<std::string> sets;
+  bool quiet = false, force = false, json = false;
+  double lambda = std::numeric_limits<double>::quiet_NaN(), exaggeration = -1;
+  int width = 1600;
+
+  auto* run = app.add_subcommand("run", "run a problem file and write its results");
+  run->add_option("problem", problem, "the problem file (TOML)")->required()->check(CLI::ExistingFile);
+  run->add_option("-o,--output", out_dir, "output directory (default out/<name>/)");
+  run->add_option("--set", sets, "override a key: --set lattice.spacing=500");
+  run->add_flag("--quiet", quiet, "print nothing but errors");
+  run->add_flag("--force", force, "run even when the memory estimate exceeds the available memory");
+
+  auto* check = app.add_subcommand("check", "validate a problem file and estimate its size; write nothing");
+  check->add_option("problem", problem, "the problem file (TOML)")->required()->check(CLI::ExistingFile);
+  check->add_option("--set", sets, "override a key: --set lattice.spacing=500");
+
+  auto* analyze = app.add_subcommand("analyze", "summarise a result file");
+  analyze->add_option("result", result_path, "a result file (.h5)")->required()->check(CLI::ExistingFile);
+  analyze->add_flag("--json", json, "machine-readable output");
+
+  auto* render = app.add_subcommand("render", "draw a result's cross-section as a PNG");
+  render->add_option("result", result_path, "a result file (.h5)")->required()->check(CLI::ExistingFile);
+  render->add_option("--lambda", lambda, "the snapshot nearest this lambda (default: the last)");
+  render->add_option("-o,--output", png, "the PNG file to write")->required();
+  render->add_option("--width", width, "picture width in pixels")->check(CLI::Range(200, 20000));
+  render->add_option("--exaggeration", exaggeration, "displacement magnification (default: the scene's)");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int status = app.exit(e);
+    return status == 0 ? 0 : 2;
+  }
+  try {
+    if (version) {
+      std::cout << "latfrac " << LATFRAC_VERSION << " (commit " << LATFRAC_GIT_COMMIT << ")\n";
+      return 0;
+    }
+    if (*run) return run_command(problem, sets, out_dir, quiet, force, joined(argc, argv));
+    if (*check) return check_command(problem, sets);
+    if (*analyze) return analyze_command(result_path, json);
+    if (*render) return render_command(result_path, lambda, png, width, exaggeration);
+    std::cout << app.help();
+    return 2;
+  } catch (const InputError& e) {
+    std::cerr << "latfrac: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "latfrac: error: " << e.what() << "\n";
+    return 1;
+  }
+}

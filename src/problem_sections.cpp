@@ -1,0 +1,364 @@
+// The sections of a problem file, read and checked against each other into a Scene.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+
+#include "problem_reader.h"
+
+namespace latfrac::problem {
+namespace {
+
+const Range poisson_range{-1, 0.25, true, false, ""};
+
+std::string coordinates(const std::array<double, 3>& point, int dim) {
+  if (dim == 2) return "(" + format_number(point[0]) + ", " + format_number(point[2]) + ")";
+  return "(" + format_number(point[0]) + ", " + format_number(point[1]) + ", " +
+         format_number(point[2]) + ")";
+}
+
+std::string name_of(const std::string& text) { return "\"" + text + "\""; }
+
+std::string read_name(const Section& top) {
+  const std::string allowed =
+      "allowed: letters, digits, '-', '_' and '.', e.g. name = \"graben-2d\"";
+  if (!top.has("name")) top.fail_missing("name", allowed + " (it names the output files)");
+  const std::string name = *top.string("name");
+  const bool valid_characters = std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
+  });
+  const bool only_dots = name.find_first_not_of('.') == std::string::npos;
+  if (!valid_characters || only_dots) {
+    top.fail("name", name_of(name) + " cannot name output files", allowed);
+  }
+  return name;
+}
+
+LatticeSpec read_lattice(const Section& top) {
+  const Section s = top.required_section("lattice", {"dim", "spacing", "size", "next_nearest"});
+  LatticeSpec lattice;
+  if (!s.has("dim")) s.fail_missing("dim", "allowed: 2 (an x-z section) or 3");
+  lattice.dim = static_cast<int>(*s.integer("dim", 2, 3));
+  lattice.spacing = s.required_number("spacing", positive("m"));
+
+  const bool flat = lattice.dim == 2;
+  const std::string shape = flat ? "[Lx, Lz] (lattice.dim = 2)" : "[Lx, Ly, Lz] (lattice.dim = 3)";
+  if (!s.has("size")) s.fail_missing("size", "allowed: size = " + shape + " in m");
+  const std::vector<double> size = *s.numbers("size", positive("m"), lattice.dim, shape);
+  lattice.size = flat ? std::array{size[0], 0.0, size[1]} : std::array{size[0], size[1], size[2]};
+  for (const double extent : size) {
+    if (extent < 2 * lattice.spacing) {
+      s.fail("size",
+             "extent " + format_number(extent) + " m is less than 2 spacings (" +
+                 format_number(2 * lattice.spacing) + " m)",
+             "allowed: each extent >= 2 * lattice.spacing");
+    }
+  }
+
+  if (flat && s.has("next_nearest")) {
+    s.fail("next_nearest", "only applies in 3-D (the 2-D lattice has nearest-neighbour bonds only)",
+           "allowed: remove it, or set lattice.dim = 3");
+  }
+  lattice.next_nearest = s.boolean("next_nearest").value_or(true);
+  return lattice;
+}
+
+std::optional<double> read_poisson(const Section& s) {
+  const std::optional<double> nu = s.number("poisson", any_finite());
+  if (nu && *nu > 0.25) {
+    s.fail("poisson",
+           format_number(*nu) +
+               " is too large: the lattice's shear springs would be negative "
+               "(ks < 0), so nu must be at most 1/4",
+           "allowed: " + poisson_range.describe("poisson"));
+  }
+  return s.number("poisson", poisson_range);
+}
+
+Material read_material(const Section& top) {
+  const Section s = top.required_section("material", {"density", "young", "poisson"});
+  Material material;
+  material.density = s.required_number("density", positive("kg/m^3"));
+  material.young = s.required_number("young", positive("Pa"));
+  if (!s.has("poisson")) s.fail_missing("poisson", "allowed: " + poisson_range.describe("poisson"));
+  material.poisson = *read_poisson(s);
+  return material;
+}
+
+void read_boundary(const Section& top, int dim, Scene& scene) {
+  const std::vector<std::string_view> faces = {"x_min", "x_max", "y_min",
+                                               "y_max", "z_min", "z_max"};
+  const std::optional<Section> s = top.section("boundary", faces);
+  if (!s) return;
+  for (int face = 0; face < face_count; ++face) {
+    const bool y_face =
+        face == static_cast<int>(Face::y_min) || face == static_cast<int>(Face::y_max);
+    if (dim == 2 && y_face && s->has(faces[face])) {
+      s->fail(faces[face], "a 2-D scene has no y faces (it is the x-z plane)",
+              "allowed in 2-D: x_min, x_max, z_min, z_max");
+    }
+    const auto condition = s->choice(faces[face], {"free", "roller", "fixed", "extension"});
+    if (condition) scene.faces[face] = static_cast<FaceCondition>(*condition);
+  }
+}
+
+std::optional<Strength> read_strength(const Section& top) {
+  const std::optional<Section> s =
+      top.section("strength", {"criterion", "sigma0", "tau0", "friction_angle", "tau0_factor"});
+  if (!s) return std::nullopt;
+  const std::vector<std::string_view> criteria = {"tensile", "tensile_or_shear", "elliptic",
+                                                  "drucker_prager"};
+  Strength strength;
+  strength.criterion = static_cast<Criterion>(s->required_choice("criterion", criteria));
+  strength.sigma0 = s->required_number("sigma0", positive("Pa"));
+  strength.tau0 = s->number("tau0", positive("Pa"));
+  strength.friction_angle = s->number("friction_angle", {0, 90, false, true, "degrees"});
+  strength.tau0_factor = s->number("tau0_factor", positive(), 1.0);
+
+  const std::string criterion = name_of(to_string(strength.criterion));
+  if (strength.tau0 && strength.tau0_factor != 1) {
+    s->fail("tau0_factor",
+            "cannot be combined with tau0: the factor only scales a tau0 derived "
+            "from friction_angle",
+            "allowed: tau0 alone, or friction_angle with tau0_factor");
+  }
+  const bool needs_shear = strength.criterion == Criterion::tensile_or_shear ||
+                           strength.criterion == Criterion::elliptic;
+  if (needs_shear && !strength.tau0 && !strength.friction_angle) {
+    s->fail_missing("tau0", "criterion " + criterion +
+                                " needs a shear strength: tau0 > 0 (Pa), "
+                                "or friction_angle (degrees) to derive it");
+  }
+  if (strength.criterion == Criterion::drucker_prager && !strength.friction_angle) {
+    s->fail_missing("friction_angle",
+                    "criterion " + criterion + " needs " +
+                        Range{0, 90, false, true, "degrees"}.describe("friction_angle"));
+  }
+  return strength;
+}
+
+Precut read_precut(const Section& s, const LatticeSpec& lattice) {
+  const bool flat = lattice.dim == 2;
+  const std::vector<std::string_view> foreign =
+      flat ? std::vector<std::string_view>{"corner", "edge1", "edge2"}
+           : std::vector<std::string_view>{"from", "to"};
+  const std::string allowed = flat ? "allowed in 2-D: from = [x, z] and to = [x, z] (m)"
+                                   : "allowed in 3-D: corner, edge1, edge2 = [x, y, z] (m)";
+  for (const std::string_view key : foreign) {
+    if (s.has(key)) s.fail(key, "is a " + std::string(flat ? "3-D" : "2-D") + " key", allowed);
+  }
+  const auto point = [&](std::string_view key) {
+    const std::string shape = flat ? "[x, z]" : "[x, y, z]";
+    if (!s.has(key)) s.fail_missing(key, allowed);
+    const std::vector<double> v = *s.numbers(key, any_finite("m"), lattice.dim, shape);
+    return flat ? std::array{v[0], 0.0, v[1]} : std::array{v[0], v[1], v[2]};
+  };
+  const auto check_inside = [&](std::string_view key, std::string_view what,
+                                const std::array<double, 3>& p) {
+    bool inside = true;
+    std::string box;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (flat && axis == 1) continue;
+      if (!box.empty()) box += ", ";
+      box += "0 <= " + std::string(1, "xyz"[axis]) + " <= " + format_number(lattice.size[axis]);
+      inside =
+          inside && p[axis] >= -lattice.spacing && p[axis] <= lattice.size[axis] + lattice.spacing;
+    }
+    if (!inside) {
+      s.fail(key, std::string(what) + " " + coordinates(p, lattice.dim) + " lies outside the box",
+             "allowed: " + box + " (m), give or take one spacing");
+    }
+  };
+
+  Precut precut;
+  if (flat) {
+    precut.from = point("from");
+    precut.to = point("to");
+    check_inside("from", "point", precut.from);
+    check_inside("to", "point", precut.to);
+    if (precut.from == precut.to)
+      s.fail("to", "equals from", "allowed: a segment of non-zero length");
+    return precut;
+  }
+  precut.corner = point("corner");
+  precut.edge1 = point("edge1");
+  precut.edge2 = point("edge2");
+  const std::array<double, 3>& a = precut.corner;
+  const std::array<double, 3>& b = precut.edge1;
+  const std::array<double, 3>& c = precut.edge2;
+  const double length1 = std::hypot(b[0], b[1], b[2]);
+  const double length2 = std::hypot(c[0], c[1], c[2]);
+  if (length1 == 0) s.fail("edge1", "is zero", "allowed: a non-zero edge vector");
+  if (length2 == 0) s.fail("edge2", "is zero", "allowed: a non-zero edge vector");
+  const double cross =
+      std::hypot(b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2], b[0] * c[1] - b[1] * c[0]);
+  if (cross <= 1e-9 * length1 * length2) {
+    s.fail("edge2", "is parallel to edge1", "allowed: two edges that span a rectangle");
+  }
+  const auto plus = [](std::array<double, 3> p, const std::array<double, 3>& q) {
+    for (int axis = 0; axis < 3; ++axis) p[axis] += q[axis];
+    return p;
+  };
+  check_inside("corner", "corner", a);
+  check_inside("edge1", "corner + edge1", plus(a, b));
+  check_inside("edge2", "corner + edge2", plus(a, c));
+  check_inside("edge2", "corner + edge1 + edge2", plus(plus(a, b), c));
+  return precut;
+}
+
+std::vector<Layer> read_layers(const Section& top, const Scene& scene) {
+  const std::vector<Section> entries =
+      top.sections("layer", {"z_min", "z_max", "density", "young", "poisson", "sigma0", "tau0"});
+  std::vector<Layer> layers;
+  for (const Section& s : entries) {
+    Layer layer;
+    layer.z_min = s.required_number("z_min", non_negative("m"));
+    layer.z_max = s.required_number("z_max", positive("m"));
+    if (layer.z_max <= layer.z_min) {
+      s.fail("z_max", "must be above z_min = " + format_number(layer.z_min) + " m",
+             "allowed: 0 <= z_min < z_max");
+    }
+    if (layer.z_min >= scene.lattice.size[2]) {
+      s.fail("z_min",
+             "lies above the box (its height is " + format_number(scene.lattice.size[2]) + " m)",
+             "allowed: 0 <= z_min < box height");
+    }
+    layer.material = scene.material;
+    layer.material.density = s.number("density", positive("kg/m^3"), scene.material.density);
+    layer.material.young = s.number("young", positive("Pa"), scene.material.young);
+    layer.material.poisson = read_poisson(s).value_or(scene.material.poisson);
+    layer.sigma0 = s.number("sigma0", positive("Pa"));
+    layer.tau0 = s.number("tau0", positive("Pa"));
+    for (const std::string_view key : {"sigma0", "tau0"}) {
+      if (s.has(key) && !scene.strength) {
+        s.fail(key, "has no effect: the scene has no [strength] section",
+               "allowed: add [strength], or remove the key");
+      }
+    }
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+      if (layer.z_min < layers[i].z_max && layers[i].z_min < layer.z_max) {
+        s.fail("z_min",
+               "the layer from " + format_number(layer.z_min) + " to " +
+                   format_number(layer.z_max) + " m overlaps layer[" + std::to_string(i) +
+                   "] from " + format_number(layers[i].z_min) + " to " +
+                   format_number(layers[i].z_max) + " m",
+               "allowed: layers that do not overlap");
+      }
+    }
+    layers.push_back(layer);
+  }
+  return layers;
+}
+
+void read_effects(const Section& top, Scene& scene) {
+  if (const auto s = top.section("gravity", {"g"})) {
+    scene.gravity = Gravity{s->number("g", non_negative("m/s^2"), 9.81)};
+  }
+  if (const auto s = top.section("contact", {"enabled"});
+      s && s->boolean("enabled").value_or(true)) {
+    scene.contact = Contact{};
+  }
+  if (const auto s = top.section("large_kinematics", {"enabled"})) {
+    scene.large_kinematics = s->boolean("enabled").value_or(true);
+  }
+  if (const auto s = top.section("heterogeneity", {"spread", "seed"})) {
+    Heterogeneity heterogeneity;
+    heterogeneity.spread = s->required_number("spread", {0, 1, false, true, ""});
+    heterogeneity.seed =
+        s->integer("seed", 0, std::numeric_limits<std::int64_t>::max()).value_or(0);
+    if (!scene.strength) {
+      s->fail("spread", "has no effect: the scene has no [strength] section",
+              "allowed: add [strength], or remove [heterogeneity]");
+    }
+    scene.heterogeneity = heterogeneity;
+  }
+}
+
+void read_loading(const Section& top, Scene& scene) {
+  if (const auto s = top.section("loading", {"mode", "total"})) {
+    s->choice("mode", {"extension"});
+    scene.loading.total = s->number("total", {-0.5, 0.5, false, false, "strain"}, 0.0);
+  }
+  if (const auto s = top.section("stepping", {"method", "increment"})) {
+    scene.stepping.method =
+        static_cast<SteppingMethod>(s->choice("method", {"event", "fixed"}).value_or(0));
+    const std::optional<double> increment = s->number("increment", positive("strain"));
+    if (scene.stepping.method == SteppingMethod::fixed && !increment) {
+      s->fail_missing("increment", "method \"fixed\" needs increment > 0 (strain), e.g. 1e-3");
+    }
+    scene.stepping.increment = increment.value_or(0);
+  }
+}
+
+void read_output(const Section& top, Scene& scene) {
+  const auto s = top.section("output", {"snapshots", "exaggeration", "picture"});
+  if (!s) return;
+  const double total = scene.loading.total;
+  const Range between{std::min(0.0, total), std::max(0.0, total), false, false,
+                      "strain, between 0 and loading.total"};
+  scene.output.snapshots =
+      s->numbers("snapshots", between, 0, "[lambda, ...]").value_or(std::vector<double>{});
+  const std::vector<double>& snapshots = scene.output.snapshots;
+  for (std::size_t i = 1; i < snapshots.size(); ++i) {
+    if (std::abs(snapshots[i]) <= std::abs(snapshots[i - 1])) {
+      s->fail("snapshots",
+              "are not in loading order (" + format_number(snapshots[i - 1]) + " then " +
+                  format_number(snapshots[i]) + ")",
+              "allowed: strains in the order loading reaches them, each once");
+    }
+  }
+  scene.output.exaggeration = s->number("exaggeration", non_negative(), 1.0);
+  scene.output.picture = s->boolean("picture").value_or(true);
+}
+
+void read_solver(const Section& top, SolverOptions& solver) {
+  const auto s =
+      top.section("solver", {"method", "tolerance", "max_iterations", "ordering", "refactor_every",
+                             "relaxation_omega", "relaxation_tolerance", "relaxation_max_sweeps"});
+  if (!s) return;
+  const Range fraction{0, 1, true, true, ""};
+  const std::int64_t int_max = std::numeric_limits<int>::max();
+  solver.method =
+      static_cast<EquilibriumMethod>(s->choice("method", {"newton", "relaxation"}).value_or(0));
+  solver.tolerance = s->number("tolerance", fraction, solver.tolerance);
+  solver.max_iterations =
+      static_cast<int>(s->integer("max_iterations", 1, int_max).value_or(solver.max_iterations));
+  solver.ordering =
+      static_cast<Ordering>(s->choice("ordering", {"metis", "nesdis", "amd"}).value_or(0));
+  solver.refactor_every =
+      static_cast<int>(s->integer("refactor_every", 1, int_max).value_or(solver.refactor_every));
+  solver.relaxation_omega =
+      s->number("relaxation_omega", {0, 2, true, true, ""}, solver.relaxation_omega);
+  solver.relaxation_tolerance =
+      s->number("relaxation_tolerance", fraction, solver.relaxation_tolerance);
+  solver.relaxation_max_sweeps =
+      static_cast<long>(s->integer("relaxation_max_sweeps", 1, std::numeric_limits<long>::max())
+                            .value_or(solver.relaxation_max_sweeps));
+}
+
+}  // namespace
+
+Scene read_scene(const Origin& origin, const toml::table& root) {
+  const Section top(origin, root, "", "the top level",
+                    {"name", "description", "lattice", "material", "boundary", "strength",
+                     "gravity", "loading", "stepping", "precut", "contact", "layer",
+                     "heterogeneity", "large_kinematics", "output", "solver"});
+  Scene scene;
+  scene.name = read_name(top);
+  scene.description = top.string("description").value_or("");
+  scene.lattice = read_lattice(top);
+  scene.material = read_material(top);
+  read_boundary(top, scene.lattice.dim, scene);
+  scene.strength = read_strength(top);
+  read_effects(top, scene);
+  read_loading(top, scene);
+  for (const Section& s : top.sections("precut", {"from", "to", "corner", "edge1", "edge2"})) {
+    scene.precuts.push_back(read_precut(s, scene.lattice));
+  }
+  scene.layers = read_layers(top, scene);
+  read_output(top, scene);
+  read_solver(top, scene.solver);
+  return scene;
+}
+
+}  // namespace latfrac::problem

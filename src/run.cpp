@@ -1,0 +1,145 @@
+// The run: build the model, follow the equilibrium path in lambda, record snapshots.
+#include "latfrac/run.h"
+
+#include <latfrac_version.h>
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <sstream>
+
+#include "latfrac/equilibrium.h"
+#include "latfrac/error.h"
+#include "latfrac/node_stress.h"
+#include "latfrac/progress.h"
+
+namespace latfrac {
+namespace {
+
+std::string iso_now() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
+}
+
+Provenance provenance_of(const Scene& scene, const RunOptions& options) {
+  Provenance p;
+  p.version = LATFRAC_VERSION;
+  p.git_commit = LATFRAC_GIT_COMMIT;
+  p.command_line = options.command_line;
+  p.problem = scene.source_text;
+  p.created = iso_now();
+  p.seed = scene.heterogeneity ? scene.heterogeneity->seed : 0;
+  return p;
+}
+
+void record_lattice(const Model& model, RunResult& result) {
+  const Lattice& lattice = model.lattice;
+  result.positions.reserve(lattice.node_count() * 3);
+  for (const Vec3& p : lattice.positions) result.positions.insert(result.positions.end(), {p.x(), p.y(), p.z()});
+  result.bonds.reserve(lattice.bond_count() * 2);
+  for (const Bond& b : lattice.bonds) {
+    result.bonds.insert(result.bonds.end(), {b.i, b.j});
+    result.bond_kind.push_back(static_cast<std::int8_t>(b.kind));
+  }
+}
+
+Snapshot snapshot_of(const Model& model, const Vector& displacement, double lambda) {
+  Snapshot s;
+  s.lambda = lambda;
+  s.displacement.reserve(model.lattice.node_count() * 3);
+  for (std::int64_t n = 0; n < model.lattice.node_count(); ++n) {
+    const Vec3 u = model.node_displacement(displacement, n);
+    s.displacement.insert(s.displacement.end(), {u.x(), u.y(), u.z()});
+  }
+  s.bond_intact = model.intact;
+  // An elastic scene has no criterion: every failure index is 0.
+  s.bond_failure_index.assign(model.lattice.bond_count(), 0.0);
+  s.node_stress = node_stresses(model, displacement);
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::string> unsupported_effects(const Scene& scene) {
+  std::vector<std::string> missing;
+  if (scene.strength) missing.push_back("[strength] (fracture)");
+  if (!scene.precuts.empty()) missing.push_back("[[precut]]");
+  if (scene.contact) missing.push_back("[contact]");
+  if (scene.heterogeneity) missing.push_back("[heterogeneity]");
+  if (scene.large_kinematics) missing.push_back("[large_kinematics]");
+  if (scene.solver.method == EquilibriumMethod::relaxation) missing.push_back("solver.method = \"relaxation\"");
+  return missing;
+}
+
+RunResult run_scene(const Scene& scene, const RunOptions& options) {
+  if (const auto missing = unsupported_effects(scene); !missing.empty()) {
+    std::string list;
+    for (const std::string& effect : missing) list += (list.empty() ? "" : ", ") + effect;
+    throw InputError(scene.source_path + ": this version of latfrac simulates elastic scenes only; " +
+                     "it cannot yet simulate " + list + ". Remove those sections to run the elastic part.");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  RunResult result;
+  result.provenance = provenance_of(scene, options);
+  result.scene = {scene.name, scene.lattice.dim, scene.lattice.spacing, "", scene.output.exaggeration};
+
+  Model model = build_model(scene);
+  record_lattice(model, result);
+  EquilibriumSolver solver(model, scene.solver);
+  ProgressLine progress(options.progress);
+
+  // A linear elastic scene follows an affine path: one factorization and one two-column
+  // solve give every lambda; KINSOL then confirms equilibrium at each snapshot.
+  const AffinePath path = solver.affine_path();
+  std::vector<double> lambdas = scene.output.snapshots;
+  if (lambdas.empty()) lambdas.push_back(scene.loading.total);
+  for (double lambda : lambdas) {
+    Vector free_displacement = path.at(lambda);
+    const EquilibriumReport report = solver.solve(lambda, free_displacement);
+    if (report.relative_residual > scene.solver.tolerance) {
+      throw Error("equilibrium at lambda " + std::to_string(lambda) + " not reached");
+    }
+    result.snapshots.push_back(snapshot_of(model, model.full_displacement(free_displacement, lambda), lambda));
+    progress.update(lambda, 0);
+  }
+  progress.finish();
+
+  result.summary.final_lambda = scene.loading.total;
+  result.summary.solves = solver.counters().solves;
+  result.summary.factorizations = solver.counters().factorizations;
+  result.summary.factor_updates = solver.counters().factor_updates;
+  result.summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+std::string summary_text(const RunResult& result) {
+  std::ostringstream text;
+  const RunSummary& s = result.summary;
+  text << "summary of " << result.scene.name << " (" << result.scene.dim << "-D, spacing "
+       << result.scene.spacing << " m, " << (result.scene.criterion.empty() ? "elastic" : result.scene.criterion)
+       << ")\n"
+       << "  nodes " << result.node_count() << ", bonds " << result.bond_count() << "\n"
+       << "  final lambda " << s.final_lambda << ", bonds broken " << s.breaks << ", events "
+       << result.events.size() << "\n"
+       << "  solves " << s.solves << ", factorizations " << s.factorizations << ", factor updates "
+       << s.factor_updates << "\n"
+       << "  wall time " << s.wall_seconds << " s\n";
+  for (const Snapshot& snapshot : result.snapshots) {
+    double max_u = 0, min_zz = 0, max_zz = 0;
+    for (std::size_t n = 0; n < result.node_count(); ++n) {
+      const double* u = &snapshot.displacement[3 * n];
+      max_u = std::max(max_u, std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
+      min_zz = std::min(min_zz, snapshot.node_stress[6 * n + 2]);
+      max_zz = std::max(max_zz, snapshot.node_stress[6 * n + 2]);
+    }
+    text << "  snapshot lambda " << snapshot.lambda << ": max |u| " << max_u << " m, sigma_zz from "
+         << min_zz / 1e6 << " to " << max_zz / 1e6 << " MPa\n";
+  }
+  text << "  made by latfrac " << result.provenance.version << " (" << result.provenance.git_commit
+       << ") on " << result.provenance.created << "\n";
+  return text.str();
+}
+
+}  // namespace latfrac

@@ -1,0 +1,229 @@
+// Tests of the HDF5 result file: exact round trip, atomic writing, and clear read errors.
+#include "latfrac/result_file.h"
+
+#include <hdf5.h>
+
+#include <catch2/catch.hpp>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "latfrac/error.h"
+#include "sample_result.h"
+
+namespace latfrac {
+namespace {
+
+using testing::sample_result;
+using testing::ScratchDirectory;
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (!same_bits(a[i], b[i])) return false;
+  }
+  return true;
+}
+
+void require_equal(const RunResult& read, const RunResult& written) {
+  const Provenance& p = read.provenance;
+  const Provenance& q = written.provenance;
+  CHECK(p.software == q.software);
+  CHECK(p.version == q.version);
+  CHECK(p.git_commit == q.git_commit);
+  CHECK(p.command_line == q.command_line);
+  CHECK(p.problem == q.problem);
+  CHECK(p.created == q.created);
+  CHECK(p.seed == q.seed);
+  CHECK(read.scene.name == written.scene.name);
+  CHECK(read.scene.dim == written.scene.dim);
+  CHECK(same_bits(read.scene.spacing, written.scene.spacing));
+  CHECK(read.scene.criterion == written.scene.criterion);
+  CHECK(same_bits(read.scene.exaggeration, written.scene.exaggeration));
+  CHECK(same_bits(read.positions, written.positions));
+  CHECK(read.bonds == written.bonds);
+  CHECK(read.bond_kind == written.bond_kind);
+  REQUIRE(read.events.size() == written.events.size());
+  for (std::size_t i = 0; i < read.events.size(); ++i) {
+    CHECK(same_bits(read.events[i].lambda, written.events[i].lambda));
+    CHECK(read.events[i].bond == written.events[i].bond);
+    CHECK(same_bits(read.events[i].failure_index, written.events[i].failure_index));
+    CHECK(read.events[i].mode == written.events[i].mode);
+    CHECK(read.events[i].cascade == written.events[i].cascade);
+  }
+  REQUIRE(read.snapshots.size() == written.snapshots.size());
+  for (std::size_t i = 0; i < read.snapshots.size(); ++i) {
+    const Snapshot& s = read.snapshots[i];
+    const Snapshot& t = written.snapshots[i];
+    CHECK(same_bits(s.lambda, t.lambda));
+    CHECK(same_bits(s.displacement, t.displacement));
+    CHECK(s.bond_intact == t.bond_intact);
+    CHECK(same_bits(s.bond_failure_index, t.bond_failure_index));
+    CHECK(same_bits(s.node_stress, t.node_stress));
+  }
+  CHECK(read.summary.breaks == written.summary.breaks);
+  CHECK(same_bits(read.summary.final_lambda, written.summary.final_lambda));
+  CHECK(same_bits(read.summary.wall_seconds, written.summary.wall_seconds));
+  CHECK(read.summary.solves == written.summary.solves);
+  CHECK(read.summary.factorizations == written.summary.factorizations);
+  CHECK(read.summary.factor_updates == written.summary.factor_updates);
+}
+
+// The message of the Exception that call throws; fails the test if it throws nothing.
+template <class Exception, class Call>
+std::string thrown_message(Call call) {
+  try {
+    call();
+  } catch (const Exception& error) {
+    return error.what();
+  }
+  FAIL("no exception was thrown");
+  return {};
+}
+
+// Runs edit on the HDF5 file at path, opened for writing.
+template <class Edit>
+void edit_hdf5(const std::string& path, Edit edit) {
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  REQUIRE(file >= 0);
+  edit(file);
+  REQUIRE(H5Fclose(file) >= 0);
+}
+
+}  // namespace
+
+TEST_CASE("a result file reads back exactly what was written", "[io]") {
+  ScratchDirectory scratch;
+  const std::string path = scratch.file("graben.h5");
+  RunResult written = sample_result();
+
+  SECTION("with events and snapshots") {}
+  SECTION("with no events and no snapshots") {
+    written.events.clear();
+    written.snapshots.clear();
+  }
+  SECTION("with no bonds") {
+    written.bonds.clear();
+    written.bond_kind.clear();
+    for (Snapshot& snapshot : written.snapshots) {
+      snapshot.bond_intact.clear();
+      snapshot.bond_failure_index.clear();
+    }
+  }
+  SECTION("with empty strings") {
+    written.provenance = Provenance{};
+    written.scene.criterion.clear();
+  }
+
+  write_result_file(path, written);
+  require_equal(read_result_file(path), written);
+}
+
+TEST_CASE("writing a result file replaces an existing one", "[io]") {
+  ScratchDirectory scratch;
+  const std::string path = scratch.file("graben.h5");
+  write_result_file(path, sample_result());
+  RunResult second = sample_result();
+  second.snapshots.pop_back();
+  second.summary.breaks = 99;
+  write_result_file(path, second);
+  require_equal(read_result_file(path), second);
+}
+
+TEST_CASE("a result file is written atomically", "[io]") {
+  ScratchDirectory scratch;
+
+  SECTION("a successful write leaves no partial file") {
+    const std::string path = scratch.file("graben.h5");
+    write_result_file(path, sample_result());
+    CHECK(std::filesystem::exists(path));
+    CHECK_FALSE(std::filesystem::exists(path + ".partial"));
+  }
+  SECTION("a write into a missing directory names the HDF5 call and leaves nothing") {
+    const std::string path = scratch.file("no/such/directory/graben.h5");
+    CHECK_THAT(thrown_message<Error>([&] { write_result_file(path, sample_result()); }),
+               Catch::Matchers::Contains("H5Fcreate") &&
+                   Catch::Matchers::Contains("No such file or directory"));
+    CHECK_FALSE(std::filesystem::exists(path));
+    CHECK_FALSE(std::filesystem::exists(path + ".partial"));
+  }
+  SECTION("a failed rename removes the partial file and leaves the target alone") {
+    const std::string path = scratch.file("occupied");
+    std::filesystem::create_directories(path + "/inside");
+    CHECK_THROWS_AS(write_result_file(path, sample_result()), Error);
+    CHECK(std::filesystem::is_directory(path + "/inside"));
+    CHECK_FALSE(std::filesystem::exists(path + ".partial"));
+  }
+  SECTION("an inconsistent RunResult is refused before anything is created") {
+    const std::string path = scratch.file("graben.h5");
+    RunResult result = sample_result();
+    result.snapshots[1].node_stress.pop_back();
+    CHECK_THAT(thrown_message<Error>([&] { write_result_file(path, result); }),
+               Catch::Matchers::Contains("snapshot 1 node_stress"));
+    CHECK(std::filesystem::is_empty(scratch.file("")));
+  }
+}
+
+TEST_CASE("reading something that is not a complete latfrac result says why", "[io]") {
+  ScratchDirectory scratch;
+  const std::string path = scratch.file("graben.h5");
+  using Catch::Matchers::Contains;
+
+  SECTION("a missing file") {
+    CHECK_THAT(thrown_message<InputError>([&] { read_result_file(path); }),
+               Contains("does not exist"));
+  }
+  SECTION("a text file") {
+    std::ofstream(path) << "name = \"graben\"\n";
+    CHECK_THAT(thrown_message<InputError>([&] { read_result_file(path); }),
+               Contains("not an HDF5 file"));
+  }
+  SECTION("an empty HDF5 file") {
+    const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    REQUIRE(file >= 0);
+    REQUIRE(H5Fclose(file) >= 0);
+    CHECK_THAT(thrown_message<InputError>([&] { read_result_file(path); }),
+               Contains("not a latfrac result") && Contains("/provenance"));
+  }
+  SECTION("a result without one of its datasets") {
+    write_result_file(path, sample_result());
+    edit_hdf5(path, [](hid_t file) { REQUIRE(H5Ldelete(file, "/events/f", H5P_DEFAULT) >= 0); });
+    CHECK_THAT(thrown_message<InputError>([&] { read_result_file(path); }),
+               Contains("/events/f is missing"));
+  }
+  SECTION("a result without one of its attributes") {
+    write_result_file(path, sample_result());
+    edit_hdf5(path, [](hid_t file) {
+      REQUIRE(H5Adelete_by_name(file, "/summary", "solves", H5P_DEFAULT) >= 0);
+    });
+    CHECK_THAT(thrown_message<InputError>([&] { read_result_file(path); }),
+               Contains("attribute 'solves' of /summary is missing"));
+  }
+  SECTION("a result with a dataset of the wrong shape") {
+    write_result_file(path, sample_result());
+    edit_hdf5(path, [](hid_t file) {
+      REQUIRE(H5Ldelete(file, "/snapshots/1/node_stress", H5P_DEFAULT) >= 0);
+      const hsize_t shape[2] = {5, 3};
+      const hid_t space = H5Screate_simple(2, shape, nullptr);
+      const hid_t dataset = H5Dcreate2(file, "/snapshots/1/node_stress", H5T_IEEE_F64LE, space,
+                                       H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+      REQUIRE(dataset >= 0);
+      H5Dclose(dataset);
+      H5Sclose(space);
+    });
+    CHECK_THAT(thrown_message<InputError>([&] { read_result_file(path); }),
+               Contains("/snapshots/1/node_stress is 5 x 3, expected 5 x 6"));
+  }
+  SECTION("a result whose snapshots are not numbered 0, 1, ...") {
+    write_result_file(path, sample_result());
+    edit_hdf5(path, [](hid_t file) {
+      REQUIRE(H5Lmove(file, "/snapshots/1", file, "/snapshots/7", H5P_DEFAULT, H5P_DEFAULT) >= 0);
+    });
+    CHECK_THAT(thrown_message<InputError>([&] { read_result_file(path); }),
+               Contains("/snapshots/1 is missing"));
+  }
+}
+
+}  // namespace latfrac
