@@ -5,6 +5,7 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <mutex>
@@ -16,7 +17,8 @@ namespace latfrac {
 
 struct CholeskyFactor::State {
   cholmod_common common;
-  cholmod_factor* factor = nullptr;
+  cholmod_factor* symbolic = nullptr;  // the analysis, kept for fresh supernodal factorizations
+  cholmod_factor* factor = nullptr;    // the numeric factor (simplicial LDL' after updates)
   cholmod_dense* solution = nullptr;
   cholmod_dense* work_y = nullptr;
   cholmod_dense* work_e = nullptr;
@@ -94,21 +96,24 @@ CholeskyFactor::CholeskyFactor(Ordering ordering) : state_(std::make_unique<Stat
 CholeskyFactor::~CholeskyFactor() {
   cholmod_common& c = state_->common;
   cholmod_l_free_factor(&state_->factor, &c);
+  cholmod_l_free_factor(&state_->symbolic, &c);
   cholmod_l_free_dense(&state_->solution, &c);
   cholmod_l_free_dense(&state_->work_y, &c);
   cholmod_l_free_dense(&state_->work_e, &c);
   cholmod_l_finish(&c);
 }
 
-bool CholeskyFactor::analyzed() const { return state_->factor != nullptr; }
+bool CholeskyFactor::analyzed() const { return state_->symbolic != nullptr; }
 
 void CholeskyFactor::analyze(StiffnessMatrix& matrix) {
   cholmod_common& c = state_->common;
   cholmod_l_free_factor(&state_->factor, &c);
+  cholmod_l_free_factor(&state_->symbolic, &c);
+  inverse_permutation_.clear();
   factorized_ = false;
   cholmod_sparse a = view_of(matrix);
-  state_->factor = cholmod_l_analyze(&a, &c);
-  check(c, state_->factor != nullptr, "cholmod_l_analyze");
+  state_->symbolic = cholmod_l_analyze(&a, &c);
+  check(c, state_->symbolic != nullptr, "cholmod_l_analyze");
 }
 
 void CholeskyFactor::factorize(StiffnessMatrix& matrix) {
@@ -116,6 +121,12 @@ void CholeskyFactor::factorize(StiffnessMatrix& matrix) {
   cholmod_common& c = state_->common;
   cholmod_sparse a = view_of(matrix);
   factorized_ = false;
+  // A factor turned simplicial by updates starts again from the supernodal analysis.
+  if (!state_->factor || !state_->factor->is_super) {
+    cholmod_l_free_factor(&state_->factor, &c);
+    state_->factor = cholmod_l_copy_factor(state_->symbolic, &c);
+    check(c, state_->factor != nullptr, "cholmod_l_copy_factor");
+  }
   const int ok = cholmod_l_factorize(&a, state_->factor, &c);
   if (c.status == CHOLMOD_NOT_POSDEF) {
     std::ostringstream message;
@@ -157,8 +168,56 @@ void CholeskyFactor::solve(double* rhs, std::int64_t rows, int columns) {
   std::copy(x, x + b.nzmax, rhs);
 }
 
+void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
+  if (!factorized_) throw Error("CholeskyFactor::update called before a successful factorization");
+  if (columns.empty()) return;
+  cholmod_common& c = state_->common;
+  cholmod_factor* factor = state_->factor;
+  if (factor->is_super || factor->is_ll) {
+    const int ok = cholmod_l_change_factor(CHOLMOD_REAL, /*to_ll=*/0, /*to_super=*/0,
+                                           /*to_packed=*/1, /*to_monotonic=*/1, factor, &c);
+    check(c, ok, "cholmod_l_change_factor");
+  }
+  // C must be permuted like the factor: row r of K is row inverse_perm[r] of C.
+  const auto* perm = static_cast<const std::int64_t*>(factor->Perm);
+  const std::int64_t n = static_cast<std::int64_t>(factor->n);
+  if (static_cast<std::int64_t>(inverse_permutation_.size()) != n) {
+    inverse_permutation_.resize(n);
+    for (std::int64_t k = 0; k < n; ++k) inverse_permutation_[perm[k]] = k;
+  }
+  std::size_t entries = 0;
+  for (const Column& column : columns) entries += column.size();
+  cholmod_sparse* update_matrix =
+      cholmod_l_allocate_sparse(n, columns.size(), entries, /*sorted=*/1, /*packed=*/1, 0, CHOLMOD_REAL, &c);
+  check(c, update_matrix != nullptr, "cholmod_l_allocate_sparse");
+  auto* p = static_cast<std::int64_t*>(update_matrix->p);
+  auto* i = static_cast<std::int64_t*>(update_matrix->i);
+  auto* x = static_cast<double*>(update_matrix->x);
+  std::int64_t k = 0;
+  for (std::size_t j = 0; j < columns.size(); ++j) {
+    p[j] = k;
+    Column sorted;
+    for (const auto& [row, value] : columns[j]) sorted.push_back({inverse_permutation_[row], value});
+    std::sort(sorted.begin(), sorted.end());
+    for (const auto& [row, value] : sorted) {
+      i[k] = row;
+      x[k++] = value;
+    }
+  }
+  p[columns.size()] = k;
+  const int ok = cholmod_l_updown(downdate ? 0 : 1, update_matrix, factor, &c);
+  const int status = c.status;
+  cholmod_l_free_sparse(&update_matrix, &c);
+  if (status == CHOLMOD_NOT_POSDEF) {
+    factorized_ = false;
+    throw Error("cholmod_l_updown: the updated stiffness matrix is not positive definite: part of "
+                "the body can move without resistance");
+  }
+  check(c, ok, "cholmod_l_updown");
+}
+
 std::int64_t CholeskyFactor::factor_nonzeros() const {
-  if (!state_->factor) return 0;
+  if (!state_->factor) return state_->symbolic ? static_cast<std::int64_t>(state_->common.lnz) : 0;
   const cholmod_factor& f = *state_->factor;
   if (f.is_super) {
     // Count the nonzeros of the supernodal factor from its supernode dimensions.

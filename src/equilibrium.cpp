@@ -1,6 +1,7 @@
 // KINSOL Newton iteration with a CHOLMOD-backed SUNLinearSolver and SUNMatrix.
 #include "latfrac/equilibrium.h"
 
+#include <Eigen/Geometry>
 #include <kinsol/kinsol.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
@@ -153,6 +154,88 @@ void EquilibriumSolver::refactorize(const Vector& free_displacement, double lamb
   factor_.factorize(stiffness_);
   ++counters_.factorizations;
   factor_current_ = true;
+  updates_since_factorization_ = 0;
+}
+
+void EquilibriumSolver::update_factor(std::int64_t bond,
+                                      const std::vector<std::pair<double, Vec3>>& weighted_directions,
+                                      bool downdate) {
+  if (!factor_current_) return;  // the next factorization assembles the new stiffness
+  if (updates_since_factorization_ >= options_.refactor_every) {
+    factor_current_ = false;
+    return;
+  }
+  const Bond& pair = model_.lattice.bonds[bond];
+  const std::vector<int> axes = model_.lattice.axes();
+  const int dim = model_.dim();
+  std::vector<CholeskyFactor::Column> columns;
+  for (const auto& [weight, direction] : weighted_directions) {
+    if (weight <= 0) continue;
+    const double scale = std::sqrt(weight);
+    CholeskyFactor::Column column;
+    for (int c = 0; c < dim; ++c) {
+      const double value = scale * direction[axes[c]];
+      if (value == 0) continue;
+      const std::int64_t fj = model_.dofs.free_index[pair.j * dim + c];
+      const std::int64_t fi = model_.dofs.free_index[pair.i * dim + c];
+      if (fj >= 0) column.push_back({fj, value});
+      if (fi >= 0) column.push_back({fi, -value});
+    }
+    if (!column.empty()) columns.push_back(std::move(column));
+  }
+  try {
+    factor_.update(columns, downdate);
+  } catch (const Error&) {
+    factor_current_ = false;  // refactorize; a real singularity is reported there
+    return;
+  }
+  ++counters_.factor_updates;
+  ++updates_since_factorization_;
+}
+
+// The bond's stiffness kn n0 n0' + ks (I - n0 n0') as weighted orthonormal directions.
+void EquilibriumSolver::remove_bond(std::int64_t bond) {
+  const Vec3& n0 = model_.lattice.bond_direction[bond];
+  const double kn = model_.normal_stiffness[bond], ks = model_.shear_stiffness[bond];
+  std::vector<std::pair<double, Vec3>> directions{{kn, n0}};
+  if (model_.dim() == 2) {
+    directions.push_back({ks, Vec3(-n0.z(), 0, n0.x())});
+  } else {
+    const Vec3 helper = std::abs(n0.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+    const Vec3 first = n0.cross(helper).normalized();
+    directions.push_back({ks, first});
+    directions.push_back({ks, n0.cross(first)});
+  }
+  update_factor(bond, directions, /*downdate=*/true);
+}
+
+void EquilibriumSolver::set_contact(std::int64_t bond, bool active) {
+  update_factor(bond, {{model_.normal_stiffness[bond], model_.lattice.bond_direction[bond]}},
+                /*downdate=*/!active);
+}
+
+AffinePath EquilibriumSolver::checked_affine_path(double lambda) {
+  AffinePath path = affine_path();
+  const double load = load_scale(lambda);
+  if (load == 0) return path;
+  const double residual = model_.residual(path.at(lambda), lambda).cwiseAbs().maxCoeff() / load;
+  if (residual <= options_.tolerance) return path;
+  factor_current_ = false;
+  path = affine_path();
+  const double fresh = model_.residual(path.at(lambda), lambda).cwiseAbs().maxCoeff() / load;
+  if (fresh > options_.tolerance) {
+    throw Error("equilibrium at lambda " + std::to_string(lambda) + ": the residual after a fresh "
+                "factorization is " + std::to_string(fresh) + " of the load (tolerance " +
+                std::to_string(options_.tolerance) + "): the stiffness is too ill-conditioned");
+  }
+  return path;
+}
+
+void EquilibriumSolver::supports_changed() {
+  stiffness_ = StiffnessMatrix(model_);
+  factor_.analyze(stiffness_);
+  factor_current_ = false;
+  kinsol_ = std::make_unique<Kinsol>(this, static_cast<sunindextype>(model_.dofs.free_count));
 }
 
 EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacement) {

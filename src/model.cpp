@@ -1,8 +1,13 @@
 // Builds the mechanical model of a scene and evaluates its forces.
 #include "latfrac/model.h"
 
+#include <optional>
+#include <random>
+
 #include "latfrac/calibration.h"
+#include "latfrac/criterion.h"
 #include "latfrac/error.h"
+#include "latfrac/precut.h"
 
 namespace latfrac {
 namespace {
@@ -28,6 +33,38 @@ const Layer* layer_at(const std::vector<Layer>& layers, double z) {
 const Material& material_at(const Scene& scene, double z) {
   const Layer* layer = layer_at(scene.layers, z);
   return layer ? layer->material : scene.material;
+}
+
+// Moduli and strengths per bond: the layer holding the bond's midpoint, times a random
+// factor uniform in [1 - spread, 1 + spread] when the scene names heterogeneity.
+void assign_strengths(const Scene& scene, Model& model) {
+  const Lattice& lattice = model.lattice;
+  const std::int64_t bonds = lattice.bond_count();
+  model.bond_young.resize(bonds);
+  model.bond_shear_modulus.resize(bonds);
+  model.bond_sigma0.assign(bonds, 0.0);
+  model.bond_tau0.assign(bonds, 0.0);
+  std::optional<CriterionParameters> criterion;
+  if (scene.strength) criterion = resolve_criterion(*scene.strength, lattice.dim);
+  std::mt19937_64 generator(scene.heterogeneity ? scene.heterogeneity->seed : 0);
+  const double spread = scene.heterogeneity ? scene.heterogeneity->spread : 0.0;
+  std::uniform_real_distribution<double> factor(1 - spread, 1 + spread);
+  for (std::int64_t b = 0; b < bonds; ++b) {
+    const Bond& bond = lattice.bonds[b];
+    const double mid_z = 0.5 * (lattice.positions[bond.i].z() + lattice.positions[bond.j].z());
+    const Layer* layer = layer_at(scene.layers, mid_z);
+    const Material& material = layer ? layer->material : scene.material;
+    model.bond_young[b] = material.young;
+    model.bond_shear_modulus[b] = material.young / (2 * (1 + material.poisson));
+    if (!criterion) continue;
+    const double scale = spread > 0 ? factor(generator) : 1.0;
+    const double sigma0 = layer && layer->sigma0 ? *layer->sigma0 : criterion->sigma0;
+    double tau0 = layer && layer->tau0 ? *layer->tau0 : criterion->tau0;
+    // A layer that sets its own sigma0 but not tau0 scales a derived tau0 with it.
+    if (layer && layer->sigma0 && !layer->tau0 && !scene.strength->tau0) tau0 *= sigma0 / criterion->sigma0;
+    model.bond_sigma0[b] = scale * sigma0;
+    model.bond_tau0[b] = scale * tau0;
+  }
 }
 
 }  // namespace
@@ -89,6 +126,15 @@ Model build_model(const Scene& scene) {
     model.shear_stiffness[b] = scale * k.shear;
   }
 
+  assign_strengths(scene, model);
+  model.precut.assign(bonds, 0);
+  for (std::int64_t b : bonds_crossing_precuts(lattice, scene.precuts)) {
+    model.precut[b] = 1;
+    model.intact[b] = 0;
+  }
+  model.contact = scene.contact.has_value();
+  model.contact_active.assign(bonds, 0);
+
   model.dofs = build_dof_map(lattice, scene.faces);
   model.external_force = Vector::Zero(model.dofs.dof_count());
   model.node_poisson.resize(lattice.node_count());
@@ -127,11 +173,17 @@ Vector Model::internal_force(const Vector& displacement) const {
   const std::vector<int> axes = lattice.axes();
   Vector force = Vector::Zero(dofs.dof_count());
   for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
-    if (!intact[b]) continue;
+    const bool in_contact = contact_capable(b) && contact_active[b];
+    if (!intact[b] && !in_contact) continue;
     const Bond& bond = lattice.bonds[b];
     const Vec3 du = node_displacement(displacement, bond.j) - node_displacement(displacement, bond.i);
     const Vec3 d0 = lattice.bond_direction[b] * lattice.bond_length[b];
-    const Vec3 t = law->tension(d0, du, normal_stiffness[b], shear_stiffness[b]);
+    Vec3 t;
+    if (intact[b]) {
+      t = law->tension(d0, du, normal_stiffness[b], shear_stiffness[b]);
+    } else {
+      t = normal_stiffness[b] * lattice.bond_direction[b].dot(du) * lattice.bond_direction[b];
+    }
     for (int c = 0; c < d; ++c) {
       force[bond.j * d + c] += t[axes[c]];
       force[bond.i * d + c] -= t[axes[c]];

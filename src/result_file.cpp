@@ -99,6 +99,19 @@ void write_events(hid_t file, const std::vector<BreakEvent>& events) {
   hdf5::write_dataset(file, "/events/cascade", cascade, shape);
 }
 
+void write_fragments(hid_t file, const std::vector<FragmentEvent>& fragments) {
+  std::vector<double> lambda;
+  std::vector<std::int64_t> nodes;
+  for (const FragmentEvent& fragment : fragments) {
+    lambda.push_back(fragment.lambda);
+    nodes.push_back(fragment.nodes);
+  }
+  const Shape shape{fragments.size()};
+  hdf5::create_group(file, "/fragments");
+  hdf5::write_dataset(file, "/fragments/lambda", lambda, shape);
+  hdf5::write_dataset(file, "/fragments/nodes", nodes, shape);
+}
+
 void write_snapshots(hid_t file, const RunResult& result) {
   const hsize_t nodes = result.node_count();
   const hsize_t bonds = result.bond_count();
@@ -122,6 +135,7 @@ void write_summary(hid_t file, const RunSummary& summary) {
   hdf5::write_attribute(file, group, "solves", summary.solves);
   hdf5::write_attribute(file, group, "factorizations", summary.factorizations);
   hdf5::write_attribute(file, group, "factor_updates", summary.factor_updates);
+  hdf5::write_attribute(file, group, "contact_cycles", summary.contact_cycles);
   hdf5::write_attribute(file, group, "final_lambda", summary.final_lambda);
   hdf5::write_attribute(file, group, "wall_seconds", summary.wall_seconds);
 }
@@ -138,6 +152,7 @@ void write_hdf5(const std::string& file_name, const RunResult& result) {
   write_scene(file.get(), result.scene);
   write_lattice(file.get(), result);
   write_events(file.get(), result.events);
+  write_fragments(file.get(), result.fragments);
   write_snapshots(file.get(), result);
   write_summary(file.get(), result.summary);
   file.close("H5Fclose", quoted);
@@ -217,6 +232,7 @@ RunSummary read_summary(hid_t file) {
   summary.solves = hdf5::read_attribute<std::int64_t>(file, group, "solves");
   summary.factorizations = hdf5::read_attribute<std::int64_t>(file, group, "factorizations");
   summary.factor_updates = hdf5::read_attribute<std::int64_t>(file, group, "factor_updates");
+  summary.contact_cycles = hdf5::read_attribute<std::int64_t>(file, group, "contact_cycles");
   summary.final_lambda = hdf5::read_attribute<double>(file, group, "final_lambda");
   summary.wall_seconds = hdf5::read_attribute<double>(file, group, "wall_seconds");
   return summary;
@@ -232,6 +248,10 @@ RunResult read_contents(hid_t file) {
   result.bonds = hdf5::read_dataset<std::int64_t>(file, "/lattice/bonds", {bonds, 2});
   result.bond_kind = hdf5::read_dataset<std::int8_t>(file, "/lattice/bond_kind", {bonds});
   result.events = read_events(file);
+  const Shape fragments{row_count(file, "/fragments/lambda", 0)};
+  const auto fragment_lambda = hdf5::read_dataset<double>(file, "/fragments/lambda", fragments);
+  const auto fragment_nodes = hdf5::read_dataset<std::int64_t>(file, "/fragments/nodes", fragments);
+  for (hsize_t i = 0; i < fragments[0]; ++i) result.fragments.push_back({fragment_lambda[i], fragment_nodes[i]});
   result.snapshots = read_snapshots(file, nodes, bonds);
   result.summary = read_summary(file);
   return result;

@@ -8,10 +8,11 @@
 #include <ctime>
 #include <sstream>
 
+#include "latfrac/continuation.h"
 #include "latfrac/equilibrium.h"
 #include "latfrac/error.h"
-#include "latfrac/node_stress.h"
 #include "latfrac/progress.h"
+#include "latfrac/snapshot.h"
 
 namespace latfrac {
 namespace {
@@ -34,40 +35,13 @@ Provenance provenance_of(const Scene& scene, const RunOptions& options) {
   return p;
 }
 
-void record_lattice(const Model& model, RunResult& result) {
-  const Lattice& lattice = model.lattice;
-  result.positions.reserve(lattice.node_count() * 3);
-  for (const Vec3& p : lattice.positions) result.positions.insert(result.positions.end(), {p.x(), p.y(), p.z()});
-  result.bonds.reserve(lattice.bond_count() * 2);
-  for (const Bond& b : lattice.bonds) {
-    result.bonds.insert(result.bonds.end(), {b.i, b.j});
-    result.bond_kind.push_back(static_cast<std::int8_t>(b.kind));
-  }
-}
-
-Snapshot snapshot_of(const Model& model, const Vector& displacement, double lambda) {
-  Snapshot s;
-  s.lambda = lambda;
-  s.displacement.reserve(model.lattice.node_count() * 3);
-  for (std::int64_t n = 0; n < model.lattice.node_count(); ++n) {
-    const Vec3 u = model.node_displacement(displacement, n);
-    s.displacement.insert(s.displacement.end(), {u.x(), u.y(), u.z()});
-  }
-  s.bond_intact = model.intact;
-  // An elastic scene has no criterion: every failure index is 0.
-  s.bond_failure_index.assign(model.lattice.bond_count(), 0.0);
-  s.node_stress = node_stresses(model, displacement);
-  return s;
-}
-
 }  // namespace
 
 std::vector<std::string> unsupported_effects(const Scene& scene) {
   std::vector<std::string> missing;
-  if (scene.strength) missing.push_back("[strength] (fracture)");
-  if (!scene.precuts.empty()) missing.push_back("[[precut]]");
-  if (scene.contact) missing.push_back("[contact]");
-  if (scene.heterogeneity) missing.push_back("[heterogeneity]");
+  if (scene.strength && scene.stepping.method == SteppingMethod::event) {
+    missing.push_back("stepping.method = \"event\" (use \"fixed\" with an increment)");
+  }
   if (scene.large_kinematics) missing.push_back("[large_kinematics]");
   if (scene.solver.method == EquilibriumMethod::relaxation) missing.push_back("solver.method = \"relaxation\"");
   return missing;
@@ -77,8 +51,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   if (const auto missing = unsupported_effects(scene); !missing.empty()) {
     std::string list;
     for (const std::string& effect : missing) list += (list.empty() ? "" : ", ") + effect;
-    throw InputError(scene.source_path + ": this version of latfrac simulates elastic scenes only; " +
-                     "it cannot yet simulate " + list + ". Remove those sections to run the elastic part.");
+    throw InputError(scene.source_path + ": this version of latfrac cannot yet simulate " + list);
   }
   const auto start = std::chrono::steady_clock::now();
   RunResult result;
@@ -90,19 +63,25 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   EquilibriumSolver solver(model, scene.solver);
   ProgressLine progress(options.progress);
 
-  // A linear elastic scene follows an affine path: one factorization and one two-column
-  // solve give every lambda; KINSOL then confirms equilibrium at each snapshot.
-  const AffinePath path = solver.affine_path();
-  std::vector<double> lambdas = scene.output.snapshots;
-  if (lambdas.empty()) lambdas.push_back(scene.loading.total);
-  for (double lambda : lambdas) {
-    Vector free_displacement = path.at(lambda);
-    const EquilibriumReport report = solver.solve(lambda, free_displacement);
-    if (report.relative_residual > scene.solver.tolerance) {
-      throw Error("equilibrium at lambda " + std::to_string(lambda) + " not reached");
+  if (scene.strength) {
+    result.scene.criterion = to_string(scene.strength->criterion);
+    FractureContinuation continuation(model, scene, solver, progress);
+    continuation.run_fixed_step(result);
+    result.summary.breaks = continuation.breaks();
+    result.summary.contact_cycles = continuation.chattering_resolved();
+  } else {
+    // A linear elastic scene follows an affine path: one factorization and one
+    // two-column solve give every lambda; KINSOL then confirms equilibrium at each snapshot.
+    const AffinePath path = solver.affine_path();
+    std::vector<double> lambdas = scene.output.snapshots;
+    if (lambdas.empty()) lambdas.push_back(scene.loading.total);
+    for (double lambda : lambdas) {
+      Vector free_displacement = path.at(lambda);
+      solver.solve(lambda, free_displacement);
+      result.snapshots.push_back(
+          make_snapshot(model, model.full_displacement(free_displacement, lambda), lambda, nullptr));
+      progress.update(lambda, 0);
     }
-    result.snapshots.push_back(snapshot_of(model, model.full_displacement(free_displacement, lambda), lambda));
-    progress.update(lambda, 0);
   }
   progress.finish();
 
@@ -123,6 +102,8 @@ std::string summary_text(const RunResult& result) {
        << "  nodes " << result.node_count() << ", bonds " << result.bond_count() << "\n"
        << "  final lambda " << s.final_lambda << ", bonds broken " << s.breaks << ", events "
        << result.events.size() << "\n"
+       << "  parts held for lack of support " << result.fragments.size() << ", contact cycles resolved "
+       << s.contact_cycles << "\n"
        << "  solves " << s.solves << ", factorizations " << s.factorizations << ", factor updates "
        << s.factor_updates << "\n"
        << "  wall time " << s.wall_seconds << " s\n";

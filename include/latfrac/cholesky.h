@@ -8,6 +8,8 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include "latfrac/scene.h"
 #include "latfrac/stiffness.h"
@@ -29,6 +31,14 @@ class CholeskyFactor {
   // Solves K X = B for `columns` right-hand sides stored column after column, in place.
   void solve(double* rhs, std::int64_t rows, int columns);
 
+  // A sparse column for a rank update: (row, value) pairs in the matrix's own numbering.
+  using Column = std::vector<std::pair<std::int64_t, double>>;
+  // K <- K + C C' (update) or K - C C' (downdate) on the factor itself, without
+  // refactorizing. The first call converts the supernodal LL' factor to the simplicial
+  // LDL' form that cholmod_l_updown needs. Throws Error if the result is not positive
+  // definite.
+  void update(const std::vector<Column>& columns, bool downdate);
+
   bool analyzed() const;
   bool factorized() const { return factorized_; }
   std::int64_t factor_nonzeros() const;
@@ -38,6 +48,7 @@ class CholeskyFactor {
  private:
   struct State;
   std::unique_ptr<State> state_;
+  std::vector<std::int64_t> inverse_permutation_;
   bool factorized_ = false;
 };
 

@@ -53,8 +53,24 @@ class EquilibriumSolver {
   // Requires a linear bond law. One factorization, one two-column solve.
   AffinePath affine_path();
 
-  // Call after changing the model's stiffness (a broken bond): the factor is stale.
+  // Call after changing the model's stiffness by other means: the factor is stale.
   void stiffness_changed() { factor_current_ = false; }
+
+  // Removes bond b's spring stiffness from the factor (rank 2 in 2-D, 3 in 3-D); call
+  // after marking it broken. A fresh factorization replaces the update after
+  // refactor_every updates.
+  void remove_bond(std::int64_t bond);
+  // Adds or removes bond b's contact spring kn n0 n0' (rank 1); call after changing
+  // model.contact_active[bond].
+  void set_contact(std::int64_t bond, bool active);
+
+  // The affine path of the current stiffness, its residual checked at lambda: when the
+  // updated factor's answer misses the tolerance, refactorizes and solves again.
+  AffinePath checked_affine_path(double lambda);
+
+  // Call after the model's supports changed (a fragment held fixed): rebuilds the
+  // stiffness pattern, the analysis and KINSOL's memory.
+  void supports_changed();
 
   // max |R(0, lambda)|: the size of the load at lambda, N.
   double load_scale(double lambda) const;
@@ -67,6 +83,10 @@ class EquilibriumSolver {
   struct Kinsol;
   friend struct Kinsol;
   void refactorize(const Vector& free_displacement, double lambda);
+  // Rank update of the factor with the columns sqrt(w) (e_j - e_i) (x) v on the free dofs.
+  void update_factor(std::int64_t bond, const std::vector<std::pair<double, Vec3>>& weighted_directions,
+                     bool downdate);
+  long updates_since_factorization_ = 0;
 
   Model& model_;
   SolverOptions options_;

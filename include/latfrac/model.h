@@ -36,6 +36,15 @@ class Model {
   std::vector<double> normal_stiffness;  // kn per bond
   std::vector<double> shear_stiffness;   // ks per bond
   std::vector<std::uint8_t> intact;      // per bond
+  std::vector<std::uint8_t> precut;      // per bond: crosses a pre-cut (starts broken)
+  // Per-bond moduli and strengths (layers and heterogeneity make them differ), Pa.
+  std::vector<double> bond_young, bond_shear_modulus, bond_sigma0, bond_tau0;
+  // Contact (when the scene names it): a broken nearest-neighbour or pre-cut bond keeps a
+  // compression-only normal spring kn, frictionless. contact_active marks the active set:
+  // forces and stiffness use exactly the active springs (a linear law), and the
+  // continuation's active-set iteration keeps the set consistent with dn <= 0.
+  bool contact = false;
+  std::vector<std::uint8_t> contact_active;
   std::vector<double> node_poisson;      // per node, for the 2-D out-of-plane stress
   DofMap dofs;
   Vector external_force;                 // per dof (gravity), N (2-D: N per metre)
@@ -52,6 +61,16 @@ class Model {
   Vector reactions(const Vector& displacement) const;
   // The displacement of node n as a 3-vector (y = 0 in 2-D).
   Vec3 node_displacement(const Vector& displacement, std::int64_t node) const;
+  // Relative displacement u_j - u_i of bond b.
+  Vec3 bond_displacement(const Vector& displacement, std::int64_t bond) const {
+    return node_displacement(displacement, lattice.bonds[bond].j) -
+           node_displacement(displacement, lattice.bonds[bond].i);
+  }
+  // May broken bond b carry a contact spring?
+  bool contact_capable(std::int64_t bond) const {
+    return contact && !intact[bond] &&
+           (lattice.bonds[bond].kind == BondKind::nearest || precut[bond]);
+  }
 };
 
 // Builds the model: lattice, per-bond springs (layers included), the face conditions and

@@ -38,6 +38,12 @@ struct BreakEvent {
   std::int64_t cascade = 0;
 };
 
+// A part of the body that lost its support and was held along the axes it lacked.
+struct FragmentEvent {
+  double lambda = 0;
+  std::int64_t nodes = 0;
+};
+
 struct Snapshot {
   double lambda = 0;
   std::vector<double> displacement;       // N x 3, m
@@ -53,6 +59,7 @@ struct RunSummary {
   std::int64_t solves = 0;
   std::int64_t factorizations = 0;
   std::int64_t factor_updates = 0;
+  std::int64_t contact_cycles = 0;  // contact iterations that cycled and were resolved
 };
 
 struct RunResult {
@@ -62,6 +69,7 @@ struct RunResult {
   std::vector<std::int64_t> bonds;      // M x 2
   std::vector<std::int8_t> bond_kind;   // M: 0 nearest, 1 next-nearest
   std::vector<BreakEvent> events;
+  std::vector<FragmentEvent> fragments;
   std::vector<Snapshot> snapshots;
   RunSummary summary;
 

@@ -1,0 +1,54 @@
+// Fracture along the extension strain lambda: the paper's fixed-step algorithm.
+//
+// lambda_k = k ds (the last step ends at loading.total). At each step: equilibrium, then
+// the cascade { find the intact bond with the largest f; if f < 1 stop; break it;
+// re-equilibrate at the same lambda }. With small kinematics the path between breaks is
+// affine, so a step without a break needs no solve; a break downdates the factor and
+// re-solves the two right-hand sides. With contact, each equilibrium is settled by an
+// active-set iteration. Parts that a break leaves without support are held fixed.
+#pragma once
+
+#include <cstdint>
+
+#include "latfrac/equilibrium.h"
+#include "latfrac/fracture.h"
+#include "latfrac/fragments.h"
+#include "latfrac/progress.h"
+#include "latfrac/run_result.h"
+
+namespace latfrac {
+
+class FractureContinuation {
+ public:
+  FractureContinuation(Model& model, const Scene& scene, EquilibriumSolver& solver,
+                       ProgressLine& progress);
+
+  // Runs from lambda = 0 to loading.total; appends events and snapshots to result.
+  void run_fixed_step(RunResult& result);
+
+  std::int64_t breaks() const { return breaks_; }
+  std::int64_t chattering_resolved() const { return chattering_resolved_; }
+
+ private:
+  Vector displacement(double lambda) const;
+  // Breaks until no intact bond has f >= 1 at lambda.
+  void cascade(double lambda, RunResult& result);
+  // Opens and closes contacts until every active one is in compression and every
+  // inactive one is open.
+  void settle_contacts(double lambda);
+  // Holds each loose part along the axes it lacks (docs/robustness.md); true if any.
+  bool hold_unsupported(const std::vector<FragmentDetector::LoosePart>& parts, double lambda);
+
+  Model& model_;
+  const Scene& scene_;
+  EquilibriumSolver& solver_;
+  ProgressLine& progress_;
+  FailureEvaluator evaluator_;
+  FragmentDetector fragments_;
+  AffinePath path_;
+  std::int64_t breaks_ = 0, chattering_resolved_ = 0;
+  std::vector<FragmentEvent> fragment_log_;
+  std::int64_t next_cascade_ = 1;
+};
+
+}  // namespace latfrac

@@ -1,0 +1,141 @@
+// The fixed-step fracture continuation: cascades, contacts and fragments.
+#include "latfrac/continuation.h"
+
+#include <cmath>
+#include <iostream>
+#include <set>
+#include <string>
+
+#include "latfrac/error.h"
+#include "latfrac/snapshot.h"
+
+namespace latfrac {
+
+FractureContinuation::FractureContinuation(Model& model, const Scene& scene, EquilibriumSolver& solver,
+                                           ProgressLine& progress)
+    : model_(model),
+      scene_(scene),
+      solver_(solver),
+      progress_(progress),
+      evaluator_(*scene.strength, model.dim()),
+      fragments_(model) {}
+
+Vector FractureContinuation::displacement(double lambda) const {
+  return model_.full_displacement(path_.at(lambda), lambda);
+}
+
+bool FractureContinuation::hold_unsupported(const std::vector<FragmentDetector::LoosePart>& parts,
+                                            double lambda) {
+  if (parts.empty()) return false;
+  const Vector u = displacement(lambda);
+  for (const auto& part : parts) {
+    hold_part(model_, part, u);
+    fragment_log_.push_back({lambda, static_cast<std::int64_t>(part.nodes.size())});
+  }
+  solver_.supports_changed();
+  return true;
+}
+
+void FractureContinuation::settle_contacts(double lambda) {
+  // Switching thresholds of a millionth of a micron per metre of spacing keep roundoff
+  // from toggling a contact that sits exactly at dn = 0.
+  const double tolerance = 1e-12 * model_.lattice.spacing;
+  std::set<std::vector<std::uint8_t>> visited;
+  for (;;) {
+    const Vector u = displacement(lambda);
+    std::vector<std::pair<std::int64_t, bool>> switches;
+    for (std::int64_t b = 0; b < model_.lattice.bond_count(); ++b) {
+      if (!model_.contact_capable(b)) continue;
+      const double dn = model_.lattice.bond_direction[b].dot(model_.bond_displacement(u, b));
+      if (model_.contact_active[b] && dn > tolerance) switches.push_back({b, false});
+      if (!model_.contact_active[b] && dn < -tolerance) switches.push_back({b, true});
+    }
+    if (switches.empty()) return;
+    // An active set met before means the iteration cycles (chattering): close every
+    // contact that wants to close, open none, solve once and stop (docs/robustness.md).
+    const bool cycling = !visited.insert(model_.contact_active).second;
+    if (cycling) {
+      std::erase_if(switches, [](const auto& s) { return !s.second; });
+      ++chattering_resolved_;
+      if (switches.empty()) return;
+    }
+    std::vector<std::int64_t> opened;
+    for (const auto& [bond, close] : switches) {
+      model_.contact_active[bond] = close;
+      solver_.set_contact(bond, close);
+      if (!close) opened.push_back(bond);
+    }
+    for (std::int64_t bond : opened) hold_unsupported(fragments_.unsupported_after_break(model_, bond), lambda);
+    path_ = solver_.checked_affine_path(lambda);
+    if (cycling) return;
+  }
+}
+
+void FractureContinuation::cascade(double lambda, RunResult& result) {
+  std::int64_t cascade_id = -1;
+  Vector u = displacement(lambda);
+  for (;;) {
+    const CriticalBond critical = evaluator_.most_critical(model_, u);
+    if (critical.bond < 0 || critical.index < 1) return;
+    if (cascade_id < 0) cascade_id = next_cascade_++;
+    const std::int64_t bond = critical.bond;
+    model_.intact[bond] = 0;
+    result.events.push_back({lambda, bond, critical.index, static_cast<std::int8_t>(critical.mode), cascade_id});
+    ++breaks_;
+    // A bond that breaks in compression becomes a closed contact at once.
+    const bool closes = model_.contact_capable(bond) &&
+                        model_.lattice.bond_direction[bond].dot(model_.bond_displacement(u, bond)) < 0;
+    model_.contact_active[bond] = closes;
+    if (!hold_unsupported(fragments_.unsupported_after_break(model_, bond), lambda)) {
+      solver_.remove_bond(bond);
+      if (closes) solver_.set_contact(bond, true);
+    }
+    path_ = solver_.checked_affine_path(lambda);
+    if (model_.contact) settle_contacts(lambda);
+    u = displacement(lambda);
+    progress_.update(lambda, breaks_);
+  }
+}
+
+void FractureContinuation::run_fixed_step(RunResult& result) {
+  // Pre-cut bonds are broken from the start: events of mode 2 at lambda 0, cascade 0.
+  for (std::int64_t b = 0; b < model_.lattice.bond_count(); ++b) {
+    if (model_.precut[b]) result.events.push_back({0.0, b, 0.0, static_cast<std::int8_t>(BreakMode::precut), 0});
+  }
+  // The faces of a pre-cut touch at rest: with contact, their springs start closed and
+  // the first settling opens those in tension.
+  for (std::int64_t b = 0; b < model_.lattice.bond_count(); ++b) {
+    if (model_.contact_capable(b)) model_.contact_active[b] = 1;
+  }
+  const auto loose = fragments_.unsupported_parts(model_);
+  for (const auto& part : loose) {
+    if (static_cast<std::int64_t>(part.nodes.size()) == model_.lattice.node_count()) {
+      throw InputError(scene_.source_path + ": [boundary]: the face conditions leave the body free to "
+                       "move along an axis; hold at least one face along every axis");
+    }
+  }
+  path_.gravity = path_.extension = Vector::Zero(model_.dofs.free_count);
+  hold_unsupported(loose, 0.0);
+  solver_.stiffness_changed();
+  path_ = solver_.checked_affine_path(0.0);
+
+  const double total = scene_.loading.total, increment = scene_.stepping.increment;
+  const long steps = total == 0 ? 0 : static_cast<long>(std::ceil(std::abs(total) / increment - 1e-9));
+  std::vector<double> snapshots = scene_.output.snapshots;
+  if (snapshots.empty()) snapshots.push_back(total);
+  std::size_t next_snapshot = 0;
+  for (long k = 0; k <= steps; ++k) {
+    const double lambda = k == steps ? total : std::copysign(k * increment, total);
+    if (model_.contact) settle_contacts(lambda);
+    cascade(lambda, result);
+    // A snapshot is taken at the first step that reaches its lambda.
+    while (next_snapshot < snapshots.size() && std::abs(snapshots[next_snapshot]) <= std::abs(lambda) + 1e-12) {
+      result.snapshots.push_back(make_snapshot(model_, displacement(lambda), lambda, &evaluator_));
+      ++next_snapshot;
+    }
+    progress_.update(lambda, breaks_);
+  }
+  result.fragments = fragment_log_;
+}
+
+}  // namespace latfrac

@@ -1,0 +1,181 @@
+// Failure indices, break modes and strength resolution against hand computations.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "latfrac/criterion.h"
+#include "latfrac/error.h"
+
+using namespace latfrac;
+
+namespace {
+constexpr double MPa = 1e6;
+const double sqrt3 = std::sqrt(3.0);
+double radians(double degrees) { return degrees * std::numbers::pi / 180; }
+}  // namespace
+
+TEST_CASE("stress-based failure indices match hand values", "[criterion]") {
+  const double sigma0 = 50 * MPa, tau0 = 40 * MPa;
+  // sigma_n / sigma0 = 30/50 = 0.6, tau / tau0 = 20/40 = 0.5.
+  const FailureIndex tensile = failure_index(Criterion::tensile, 30 * MPa, 20 * MPa, sigma0, tau0);
+  CHECK(tensile.value == Approx(0.6));
+  CHECK(tensile.mode == BreakMode::tensile);
+
+  const FailureIndex either =
+      failure_index(Criterion::tensile_or_shear, 30 * MPa, 20 * MPa, sigma0, tau0);
+  CHECK(either.value == Approx(0.6));
+  CHECK(either.mode == BreakMode::tensile);
+
+  const FailureIndex ellipse = failure_index(Criterion::elliptic, 30 * MPa, 20 * MPa, sigma0, tau0);
+  CHECK(ellipse.value == Approx(0.36 + 0.25));
+  CHECK(ellipse.mode == BreakMode::tensile);
+
+  // tau / tau0 = 36/40 = 0.9 beats 0.6: shear.
+  const FailureIndex sheared =
+      failure_index(Criterion::tensile_or_shear, 30 * MPa, 36 * MPa, sigma0, tau0);
+  CHECK(sheared.value == Approx(0.9));
+  CHECK(sheared.mode == BreakMode::shear);
+  CHECK(failure_index(Criterion::elliptic, 30 * MPa, 36 * MPa, sigma0, tau0).value ==
+        Approx(0.36 + 0.81));
+}
+
+TEST_CASE("compression never drives failure", "[criterion]") {
+  const double sigma0 = 50 * MPa, tau0 = 40 * MPa;
+  CHECK(failure_index(Criterion::tensile, -80 * MPa, 20 * MPa, sigma0, tau0).value == 0);
+  const FailureIndex either =
+      failure_index(Criterion::tensile_or_shear, -80 * MPa, 20 * MPa, sigma0, tau0);
+  CHECK(either.value == Approx(0.5));
+  CHECK(either.mode == BreakMode::shear);
+  const FailureIndex ellipse = failure_index(Criterion::elliptic, -80 * MPa, 20 * MPa, sigma0, tau0);
+  CHECK(ellipse.value == Approx(0.25));
+  CHECK(ellipse.mode == BreakMode::shear);
+}
+
+TEST_CASE("failure_index accepts an infinite tau0 and refuses Drucker-Prager", "[criterion]") {
+  const double inf = std::numeric_limits<double>::infinity();
+  CHECK(failure_index(Criterion::elliptic, 25 * MPa, 1e9, 50 * MPa, inf).value == Approx(0.25));
+  CHECK_THROWS_AS(failure_index(Criterion::drucker_prager, 1, 1, 1, 1), Error);
+}
+
+TEST_CASE("tau0 derived from the friction angle", "[criterion]") {
+  // psi = 30: (1 + 1/2) / (2 sqrt3 / 2) = 1.5 / sqrt3 = sqrt3 / 2 = 0.8660254...
+  CHECK(derived_tau0(50 * MPa, 30, 1) == Approx(50 * MPa * 0.8660254037844386));
+  // The paper's psi = 34: sin 34 = 0.5591929, cos 34 = 0.8290376,
+  // 1.5591929 / 1.6580751 = 0.9403632, so tau0 = 47.018 MPa for sigma0 = 50 MPa.
+  CHECK(derived_tau0(50 * MPa, 34, 1) == Approx(47.01816e6).epsilon(1e-6));
+  CHECK(derived_tau0(50 * MPa, 34, 3) == Approx(3 * 47.01816e6).epsilon(1e-6));
+}
+
+TEST_CASE("resolve_criterion derives, passes through and rejects", "[criterion]") {
+  Strength s;
+  s.criterion = Criterion::elliptic;
+  s.sigma0 = 50 * MPa;
+  s.friction_angle = 30;
+  s.tau0_factor = 2;
+  CriterionParameters p = resolve_criterion(s, 3);
+  CHECK(p.tau0 == Approx(2 * 50 * MPa * 0.8660254037844386));
+  // psi = 30, 3-D: alpha = 1 / (2.5 sqrt3), k / c = 6 (sqrt3 / 2) / (2.5 sqrt3) = 1.2.
+  CHECK(p.dp_alpha == Approx(0.4 / sqrt3));
+  CHECK(p.dp_k_per_cohesion == Approx(1.2));
+  // 2-D: tan 30 = 1/sqrt3, sqrt(9 + 12/3) = sqrt13: alpha = 1/sqrt39, k / c = 3/sqrt13.
+  p = resolve_criterion(s, 2);
+  CHECK(p.dp_alpha == Approx(1 / std::sqrt(39.0)));
+  CHECK(p.dp_k_per_cohesion == Approx(3 / std::sqrt(13.0)));
+
+  s.tau0 = 20 * MPa;
+  s.tau0_factor = 1;
+  CHECK(resolve_criterion(s, 3).tau0 == 20 * MPa);
+
+  Strength tensile;
+  tensile.criterion = Criterion::tensile;
+  tensile.sigma0 = 10 * MPa;
+  p = resolve_criterion(tensile, 2);
+  CHECK(std::isinf(p.tau0));
+  CHECK(std::isnan(p.dp_alpha));
+
+  Strength missing = tensile;
+  missing.criterion = Criterion::elliptic;
+  CHECK_THROWS_AS(resolve_criterion(missing, 2), InputError);
+  missing.criterion = Criterion::tensile_or_shear;
+  CHECK_THROWS_AS(resolve_criterion(missing, 2), InputError);
+  missing.criterion = Criterion::drucker_prager;
+  missing.tau0 = 5 * MPa;
+  CHECK_THROWS_AS(resolve_criterion(missing, 2), InputError);
+  Strength weak = tensile;
+  weak.sigma0 = 0;
+  CHECK_THROWS_AS(resolve_criterion(weak, 2), InputError);
+}
+
+TEST_CASE("Drucker-Prager invariants and hand values", "[criterion]") {
+  // psi = 30, 3-D, c = 10 MPa: alpha = 0.4/sqrt3, k = 12 MPa.
+  const double alpha = 0.4 / sqrt3, k = 12 * MPa;
+  // Uniaxial compression q = 20 MPa: I1 = -q, sqrt(J2) = q/sqrt3,
+  // f = (20/sqrt3) (1 - 0.4) / 12 = 1/sqrt3.
+  const VoigtStress uniaxial{0, 0, -20 * MPa, 0, 0, 0};
+  CHECK(first_invariant(uniaxial) == -20 * MPa);
+  CHECK(second_deviatoric_invariant(uniaxial) == Approx(400 * MPa * MPa / 3));
+  const FailureIndex f = drucker_prager_index(uniaxial, alpha, k);
+  CHECK(f.value == Approx(1 / sqrt3));
+  CHECK(f.mode == BreakMode::shear);
+
+  // A hydrostatic compression -p lowers f by alpha 3p / k.
+  const double p = 7 * MPa;
+  const VoigtStress pressed{-p, -p, -20 * MPa - p, 0, 0, 0};
+  CHECK(drucker_prager_index(pressed, alpha, k).value ==
+        Approx(1 / sqrt3 - alpha * 3 * p / k).epsilon(1e-13));
+
+  // Pure shear: J2 = tau^2, I1 = 0, f = tau / k; any Voigt shear slot.
+  for (int slot = 3; slot < 6; ++slot) {
+    VoigtStress shear{};
+    shear[slot] = 6 * MPa;
+    CHECK(drucker_prager_index(shear, alpha, k).value == Approx(0.5));
+  }
+
+  // Hydrostatic tension: sqrt(J2) = 0, the mean-stress term decides: tensile mode.
+  const FailureIndex pulled = drucker_prager_index({MPa, MPa, MPa, 0, 0, 0}, alpha, k);
+  CHECK(pulled.value == Approx(alpha * 3 * MPa / k));
+  CHECK(pulled.mode == BreakMode::tensile);
+}
+
+TEST_CASE("3-D Drucker-Prager constants reproduce Mohr-Coulomb in compression", "[criterion]") {
+  const double c = 10 * MPa;
+  for (double psi : {0.0, 20.0, 30.0, 34.0, 45.0}) {
+    const DruckerPragerConstants dp = drucker_prager_constants(psi, 3);
+    const double k = dp.k_per_cohesion * c;
+    const double s = std::sin(radians(psi)), cs = std::cos(radians(psi));
+    // Uniaxial compressive strength 2 c cos psi / (1 - sin psi).
+    const double strength = 2 * c * cs / (1 - s);
+    CHECK(drucker_prager_index({0, 0, -strength, 0, 0, 0}, dp.alpha, k).value == Approx(1));
+    // The compression meridian (two equal larger principal stresses): Mohr circle of
+    // centre C and radius R = c cos psi - C sin psi touches the Coulomb line.
+    for (double centre : {-60 * MPa, -20 * MPa, 0.0}) {
+      const double radius = c * cs - centre * s;
+      const double larger = centre + radius, smaller = centre - radius;
+      CHECK(drucker_prager_index({larger, larger, smaller, 0, 0, 0}, dp.alpha, k).value ==
+            Approx(1));
+    }
+  }
+}
+
+TEST_CASE("2-D Drucker-Prager constants reproduce Mohr-Coulomb in plane strain", "[criterion]") {
+  // Plane-strain plastic flow (associated, eps_yy = 0) fixes the out-of-plane deviator at
+  // s_yy = -2 alpha sqrt(J2). With in-plane principal stresses C +- R and sigma_yy = C + d,
+  // J2 = R^2 + d^2/3 and s_yy = 2d/3, so d = -3 alpha R / sqrt(1 - 3 alpha^2). On the
+  // Coulomb line R = c cos psi - C sin psi this state must give f = 1.
+  const double c = 10 * MPa;
+  for (double psi : {0.0, 30.0, 45.0}) {
+    const DruckerPragerConstants dp = drucker_prager_constants(psi, 2);
+    const double s = std::sin(radians(psi)), cs = std::cos(radians(psi));
+    for (double centre : {-50 * MPa, -5 * MPa, 0.0}) {
+      const double radius = c * cs - centre * s;
+      const double d = -3 * dp.alpha * radius / std::sqrt(1 - 3 * dp.alpha * dp.alpha);
+      const VoigtStress stress{centre + radius, centre + d, centre - radius, 0, 0, 0};
+      CHECK(drucker_prager_index(stress, dp.alpha, dp.k_per_cohesion * c).value == Approx(1));
+    }
+  }
+  // psi = 0: pure in-plane shear fails at tau = c.
+  const DruckerPragerConstants tresca = drucker_prager_constants(0, 2);
+  CHECK(drucker_prager_index({0, 0, 0, 0, c, 0}, tresca.alpha, tresca.k_per_cohesion * c).value ==
+        Approx(1));
+}
