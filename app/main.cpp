@@ -30,14 +30,9 @@ std::string joined(int argc, char** argv) {
 
 // Refuses a problem whose estimated memory exceeds what the machine has available.
 void check_memory(const Scene& scene, bool force) {
-  const SizeEstimate estimate = estimate_size(scene);
-  const double available = available_memory_bytes();
-  if (force || available <= 0 || estimate.memory_bytes <= available) return;
-  throw InputError(scene.source_path + ": the problem needs about " +
-                   std::to_string(static_cast<long>(estimate.memory_bytes / (1 << 20))) +
-                   " MiB (" + std::to_string(estimate.nodes) + " nodes) but only " +
-                   std::to_string(static_cast<long>(available / (1 << 20))) +
-                   " MiB are available; use a larger lattice.spacing, or --force to try anyway");
+  if (force) return;
+  const std::string refusal = memory_refusal(scene, estimate_size(scene), available_memory_bytes());
+  if (!refusal.empty()) throw InputError(refusal);
 }
 
 int run_command(const std::string& problem, const std::vector<std::string>& sets, std::string out_dir,
@@ -75,9 +70,13 @@ int run_command(const std::string& problem, const std::vector<std::string>& sets
 
 int check_command(const std::string& problem, const std::vector<std::string>& sets) {
   const Scene scene = read_problem_file(problem, sets);
-  std::cout << describe(scene) << "\n" << describe(estimate_size(scene));
+  const SizeEstimate estimate = estimate_size(scene);
+  std::cout << describe(scene) << "\n" << describe(estimate);
   const double available = available_memory_bytes();
-  if (available > 0) std::cout << "  available memory " << available / (1 << 20) << " MiB\n";
+  if (available > 0) std::cout << "  available memory " << readable_bytes(available) << "\n";
+  if (const std::string refusal = memory_refusal(scene, estimate, available); !refusal.empty()) {
+    std::cout << "note: run will refuse this problem without --force: " << refusal << "\n";
+  }
   const auto missing = unsupported_effects(scene);
   for (const std::string& effect : missing) {
     std::cout << "note: this version cannot yet simulate " << effect << "\n";

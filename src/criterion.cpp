@@ -57,7 +57,7 @@ double derived_tau0(double sigma0, double friction_angle_deg, double factor_m) {
 }
 
 CriterionParameters resolve_criterion(const Strength& strength, int dim) {
-    if (dim != 2 && dim != 3) {
+  if (dim != 2 && dim != 3) {
     throw InputError("[lattice] dim = " + std::to_string(dim) + ": allowed values are 2 and 3");
   }
   require(strength.sigma0 > 0, "sigma0 must be > 0 (Pa)");
@@ -106,14 +106,15 @@ FailureIndex failure_index(Criterion criterion, double sigma_n, double tau, doub
     case Criterion::drucker_prager:
       break;
   }
-  throw Error("failure_index: drucker_prager needs the bond's stress tensor (drucker_prager_index)");
+  throw Error(
+      "failure_index: drucker_prager needs the bond's stress tensor (drucker_prager_index)");
 }
 
 double first_invariant(const VoigtStress& s) { return s[0] + s[1] + s[2]; }
 
 double j2_product(const VoigtStress& a, const VoigtStress& b) {
-  const double normal = (a[0] - a[1]) * (b[0] - b[1]) + (a[1] - a[2]) * (b[1] - b[2]) +
-                        (a[2] - a[0]) * (b[2] - b[0]);
+  const double normal =
+      (a[0] - a[1]) * (b[0] - b[1]) + (a[1] - a[2]) * (b[1] - b[2]) + (a[2] - a[0]) * (b[2] - b[0]);
   return normal / 6 + a[3] * b[3] + a[4] * b[4] + a[5] * b[5];
 }
 

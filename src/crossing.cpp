@@ -71,8 +71,7 @@ Quadratic ellipse(const AffineBondStress& s, double sigma0, double tau0) {
 }
 
 // The interval is split where sn changes sign: <sn>+ is 0 on one side.
-double elliptic_crossing(const AffineBondStress& start, double sigma0, double tau0,
-                         double length) {
+double elliptic_crossing(const AffineBondStress& start, double sigma0, double tau0, double length) {
   std::array<double, 3> bounds{0, length, length};
   int pieces = 1;
   if (start.normal1 != 0) {
@@ -106,8 +105,8 @@ double to_lambda(double from, double x, double to) {
 // costs up to half the digits (about 1e-8 relative). Newton steps on the unsquared
 // phi(x) = sqrt(J2(x)) - r(x), whose slope at the crossing is positive (f is convex and
 // rises through 1), restore full precision; a step is kept only when it reduces |phi|.
-double polished(const VoigtStress& start, const VoigtStress& slope, double r0, double r1,
-                double x, double length) {
+double polished(const VoigtStress& start, const VoigtStress& slope, double r0, double r1, double x,
+                double length) {
   const auto phi = [&](double at, double* derivative) {
     VoigtStress s;
     for (int i = 0; i < 6; ++i) s[i] = start[i] + at * slope[i];
@@ -147,8 +146,9 @@ QuadraticRoots real_roots(double a, double b, double c) {
 double first_crossing(Criterion criterion, const AffineBondStress& stress, double sigma0,
                       double tau0, double from, double to) {
   if (criterion == Criterion::drucker_prager) {
-    throw Error("first_crossing: drucker_prager needs the stress tensor "
-                "(first_crossing_drucker_prager)");
+    throw Error(
+        "first_crossing: drucker_prager needs the stress tensor "
+        "(first_crossing_drucker_prager)");
   }
   const AffineBondStress start = moved_to(stress, from);
   if (failure_index(criterion, start.normal0, start.shear0.norm(), sigma0, tau0).value >= 1) {

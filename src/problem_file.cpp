@@ -28,12 +28,80 @@ std::string read_text(const std::string& path) {
   return text;
 }
 
+// The line of the first byte that is not UTF-8 text, or 0 when the text is clean.
+std::size_t first_invalid_utf8_line(const std::string& text) {
+  std::size_t line = 1;
+  for (std::size_t k = 0; k < text.size();) {
+    const auto byte = static_cast<unsigned char>(text[k]);
+    const int length = byte < 0x80 ? 1 : (byte >> 5) == 0x6 ? 2 : (byte >> 4) == 0xE ? 3 : (byte >> 3) == 0x1E ? 4 : 0;
+    if (length == 0 || k + length > text.size()) return line;
+    for (int c = 1; c < length; ++c) {
+      if ((static_cast<unsigned char>(text[k + c]) >> 6) != 0x2) return line;
+    }
+    if ((byte < 0x20 && byte != '\n' && byte != '\r' && byte != '\t') || byte == 0x7F) return line;
+    if (byte == '\n') ++line;
+    k += length;
+  }
+  return 0;
+}
+
+// The line where a bracket opened before `error_line` is still open, or 0. Strings and
+// comments are skipped; a table header ([name] at the start of a line) does not count.
+std::size_t unclosed_bracket_line(const std::string& text, std::size_t error_line) {
+  std::size_t line = 1, opened_on = 0;
+  int depth = 0;
+  bool at_line_start = true;
+  char quote = 0;
+  for (std::size_t k = 0; k < text.size() && line < error_line; ++k) {
+    const char c = text[k];
+    if (c == '\n') {
+      ++line;
+      at_line_start = true;
+      quote = 0;
+      continue;
+    }
+    if (quote) {
+      if (c == quote && text[k - 1] != '\\') quote = 0;
+      continue;
+    }
+    if (c == '#') {
+      while (k + 1 < text.size() && text[k + 1] != '\n') ++k;
+      continue;
+    }
+    if (c == '"' || c == '\'') quote = c;
+    if (c == '[' && !(at_line_start && depth == 0)) {
+      if (depth++ == 0) opened_on = line;
+    } else if (c == '[' && at_line_start) {
+      while (k + 1 < text.size() && text[k + 1] != '\n') ++k;  // a table header
+      continue;
+    } else if (c == ']' && depth > 0) {
+      --depth;
+    }
+    if (c != ' ' && c != '\t') at_line_start = false;
+  }
+  return depth > 0 ? opened_on : 0;
+}
+
 toml::table parse_toml(const std::string& text, const std::string& source_name) {
+  if (const std::size_t line = first_invalid_utf8_line(text)) {
+    throw InputError(source_name + ":" + std::to_string(line) +
+                     ": malformed TOML: this line holds bytes that are not valid utf-8 text (is "
+                     "this a problem file?)");
+  }
   try {
     return toml::parse(text, std::string_view(source_name));
   } catch (const toml::parse_error& error) {
-    throw InputError(source_name + ":" + std::to_string(error.source().begin.line) +
-                     ": malformed TOML: " + std::string(error.description()) +
+    std::size_t line = error.source().begin.line;
+    std::string description(error.description());
+    if (description.find("parsing array") != std::string::npos) {
+      if (const std::size_t opened = unclosed_bracket_line(text, line)) {
+        line = opened;
+        description = "an array opened on this line is not closed with ']'";
+      }
+    } else if (description.find("parsing string") != std::string::npos) {
+      description = "a string on this line is unclosed: it needs its closing quote (" + description + ")";
+    }
+    throw InputError(source_name + ":" + std::to_string(line) + ": malformed TOML: " + description +
                      "; see https://toml.io for the syntax");
   }
 }

@@ -64,6 +64,14 @@ LatticeSpec read_lattice(const Section& top) {
 }
 
 std::optional<double> read_poisson(const Section& s) {
+  // Non-finite values are named with nu's own range, not the generic "a finite number".
+  if (const toml::node* node = s.find("poisson"); node && node->is_floating_point()) {
+    const double value = node->as_floating_point()->get();
+    if (!std::isfinite(value)) {
+      s.fail("poisson", "must be finite, got " + format_number(value),
+             "allowed: " + poisson_range.describe("poisson"));
+    }
+  }
   const std::optional<double> nu = s.number("poisson", any_finite());
   if (nu && *nu > 0.25) {
     s.fail("poisson",

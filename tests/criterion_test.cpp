@@ -1,10 +1,11 @@
 // Failure indices, break modes and strength resolution against hand computations.
+#include "latfrac/criterion.h"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 #include <numbers>
 
-#include "latfrac/criterion.h"
 #include "latfrac/error.h"
 
 using namespace latfrac;
@@ -47,7 +48,8 @@ TEST_CASE("compression never drives failure", "[criterion]") {
       failure_index(Criterion::tensile_or_shear, -80 * MPa, 20 * MPa, sigma0, tau0);
   CHECK(either.value == Approx(0.5));
   CHECK(either.mode == BreakMode::shear);
-  const FailureIndex ellipse = failure_index(Criterion::elliptic, -80 * MPa, 20 * MPa, sigma0, tau0);
+  const FailureIndex ellipse =
+      failure_index(Criterion::elliptic, -80 * MPa, 20 * MPa, sigma0, tau0);
   CHECK(ellipse.value == Approx(0.25));
   CHECK(ellipse.mode == BreakMode::shear);
 }
@@ -173,6 +175,16 @@ TEST_CASE("2-D Drucker-Prager constants reproduce Mohr-Coulomb in plane strain",
       const VoigtStress stress{centre + radius, centre + d, centre - radius, 0, 0, 0};
       CHECK(drucker_prager_index(stress, dp.alpha, dp.k_per_cohesion * c).value == Approx(1));
     }
+  }
+  // With the elastic sigma_yy = nu (xx + zz) instead, the same Coulomb state is not at f = 1:
+  // psi = 30, nu = 0.2, C = -5c, R = c cos psi - C sin psi = 33.66 MPa gives f = 2.2402
+  // (docs/criteria.md quotes this).
+  {
+    const DruckerPragerConstants dp = drucker_prager_constants(30, 2);
+    const double centre = -5 * c, radius = c * std::cos(radians(30)) - centre * 0.5;
+    const VoigtStress elastic{centre + radius, 0.2 * 2 * centre, centre - radius, 0, 0, 0};
+    CHECK(drucker_prager_index(elastic, dp.alpha, dp.k_per_cohesion * c).value ==
+          Approx(2.2402222439863455));
   }
   // psi = 0: pure in-plane shear fails at tau = c.
   const DruckerPragerConstants tresca = drucker_prager_constants(0, 2);

@@ -1,11 +1,12 @@
 // Closed-form crossings against sampling + bisection of f, and hand-solved edge cases.
+#include "latfrac/crossing.h"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 #include <random>
 
 #include "latfrac/criterion.h"
-#include "latfrac/crossing.h"
 #include "latfrac/error.h"
 
 using namespace latfrac;
@@ -227,7 +228,8 @@ TEST_CASE("Drucker-Prager crossings in hand-solved cases", "[crossing]") {
 
   // S = l (p I + d e_xy) with d < 3 alpha p: (d l)^2 = (k - 3 alpha p l)^2 has the admissible
   // root l = k / (d + 3 alpha p) and the squared-in root l = k / (3 alpha p - d), where
-  // k - alpha I1 < 0 (f = 2 alpha I1 / k - 1 > 1 there).
+  // k - alpha I1 < 0 (f = 2 alpha I1 / k - 1 > 1 there). Both lie in the interval; such a
+  // root always follows the admissible one, since f > 1 at it and f(from) < 1.
   const double d = 2 * MPa;
   const VoigtStress steep{p, p, p, 0, 0, d};
   const double admissible = k / (d + 3 * alpha * p), spurious = k / (3 * alpha * p - d);

@@ -240,8 +240,9 @@ TEST_CASE("nan and inf are rejected", "[io]") {
 }
 
 TEST_CASE("malformed TOML is reported at its line", "[io]") {
+  // An unclosed array is reported where it opens, not where the parser noticed.
   const std::string message = error_of(with(minimal, "size = [60e3, 30e3]", "size = [60e3, 30e3"));
-  CHECK_THAT(message, StartsWith("t.toml:6: malformed TOML: "));
+  CHECK_THAT(message, StartsWith("t.toml:5: malformed TOML: ") && Contains("not closed"));
   CHECK_THAT(error_of(with(minimal, "dim = 2\n", "dim = 2\ndim = 3\n")),
              StartsWith("t.toml:4: malformed TOML: ") && Contains("cannot redefine"));
 }
@@ -260,7 +261,7 @@ TEST_CASE("a problem file is read from disk with its text", "[io]") {
   CHECK(scene.source_text == minimal);
 }
 
-TEST_CASE("--set overrides are applied and then validated", "[io]") {
+TEST_CASE("Overrides (--set) are applied and then validated", "[io]") {
   const latfrac::Scene scene =
       parse_problem(full, "t.toml",
                     {"lattice.spacing=500", "strength.criterion=tensile", "output.snapshots=[0.04]",

@@ -13,8 +13,9 @@
 
 namespace latfrac {
 
+// Counts are doubles: an absurd scene must still give a finite, printable estimate.
 struct SizeEstimate {
-  std::int64_t nodes = 0, bonds = 0, unknowns = 0, factor_nonzeros = 0;
+  double nodes = 0, bonds = 0, unknowns = 0, factor_nonzeros = 0;
   double memory_bytes = 0;
 };
 
@@ -24,5 +25,11 @@ SizeEstimate estimate_size(const Scene& scene);
 double available_memory_bytes();
 
 std::string describe(const SizeEstimate& estimate);
+
+// Bytes in readable units: "512 MiB", "3.2 GiB", "1.1e+03 PiB".
+std::string readable_bytes(double bytes);
+
+// The refusal message when the estimate exceeds the available memory, or "" when it fits.
+std::string memory_refusal(const Scene& scene, const SizeEstimate& estimate, double available_bytes);
 
 }  // namespace latfrac
