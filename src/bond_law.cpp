@@ -3,25 +3,24 @@
 
 namespace latfrac {
 
-BondDeformation SmallKinematics::deformation(const Vec3& reference_vector,
+BondDeformation SmallKinematics::deformation(const BondReference& reference,
                                              const Vec3& relative_displacement) const {
-  const Vec3 n0 = reference_vector.normalized();
   BondDeformation d;
-  d.normal = n0.dot(relative_displacement);
-  d.shear = relative_displacement - d.normal * n0;
+  d.normal = reference.direction.dot(relative_displacement);
+  d.shear = relative_displacement - d.normal * reference.direction;
   return d;
 }
 
-Vec3 SmallKinematics::tension(const Vec3& reference_vector, const Vec3& relative_displacement,
+// kn dn n0 + ks (du - dn n0) = ks du + (kn - ks) dn n0.
+Vec3 SmallKinematics::tension(const BondReference& reference, const Vec3& relative_displacement,
                               double kn, double ks) const {
-  const BondDeformation d = deformation(reference_vector, relative_displacement);
-  return kn * d.normal * reference_vector.normalized() + ks * d.shear;
+  const double dn = reference.direction.dot(relative_displacement);
+  return ks * relative_displacement + (kn - ks) * dn * reference.direction;
 }
 
-Mat3 SmallKinematics::tangent(const Vec3& reference_vector, const Vec3&, double kn,
+Mat3 SmallKinematics::tangent(const BondReference& reference, const Vec3&, double kn,
                               double ks) const {
-  const Vec3 n0 = reference_vector.normalized();
-  const Mat3 projector = n0 * n0.transpose();
+  const Mat3 projector = reference.direction * reference.direction.transpose();
   return kn * projector + ks * (Mat3::Identity() - projector);
 }
 

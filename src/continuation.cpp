@@ -17,11 +17,23 @@ FractureContinuation::FractureContinuation(Model& model, const Scene& scene, Equ
       scene_(scene),
       solver_(solver),
       progress_(progress),
-      evaluator_(*scene.strength, model.dim()),
+      evaluator_(*scene.strength, model),
       fragments_(model) {}
 
-Vector FractureContinuation::displacement(double lambda) const {
+Vector FractureContinuation::displacement(double lambda) {
+  if (state_current_ && lambda == state_lambda_) return model_.full_displacement(state_, lambda);
+  if (!path_current_) {
+    path_ = solver_.checked_affine_path(lambda);
+    path_current_ = true;
+  }
   return model_.full_displacement(path_.at(lambda), lambda);
+}
+
+void FractureContinuation::resolve(double lambda) {
+  state_ = solver_.checked_solve(lambda);
+  state_lambda_ = lambda;
+  state_current_ = true;
+  path_current_ = false;
 }
 
 bool FractureContinuation::hold_unsupported(const std::vector<FragmentDetector::LoosePart>& parts,
@@ -33,6 +45,7 @@ bool FractureContinuation::hold_unsupported(const std::vector<FragmentDetector::
     fragment_log_.push_back({lambda, static_cast<std::int64_t>(part.nodes.size())});
   }
   solver_.supports_changed();
+  state_current_ = path_current_ = false;  // the unknowns changed
   return true;
 }
 
@@ -66,7 +79,7 @@ void FractureContinuation::settle_contacts(double lambda) {
       if (!close) opened.push_back(bond);
     }
     for (std::int64_t bond : opened) hold_unsupported(fragments_.unsupported_after_break(model_, bond), lambda);
-    path_ = solver_.checked_affine_path(lambda);
+    resolve(lambda);
     if (cycling) return;
   }
 }
@@ -90,7 +103,7 @@ void FractureContinuation::cascade(double lambda, RunResult& result) {
       solver_.remove_bond(bond);
       if (closes) solver_.set_contact(bond, true);
     }
-    path_ = solver_.checked_affine_path(lambda);
+    resolve(lambda);
     if (model_.contact) settle_contacts(lambda);
     u = displacement(lambda);
     progress_.update(lambda, breaks_);
@@ -114,10 +127,12 @@ void FractureContinuation::run_fixed_step(RunResult& result) {
                        "move along an axis; hold at least one face along every axis");
     }
   }
-  path_.gravity = path_.extension = Vector::Zero(model_.dofs.free_count);
-  hold_unsupported(loose, 0.0);
+  for (const auto& part : loose) {
+    hold_part(model_, part, Vector::Zero(model_.dofs.dof_count()));
+    fragment_log_.push_back({0.0, static_cast<std::int64_t>(part.nodes.size())});
+  }
+  if (!loose.empty()) solver_.supports_changed();
   solver_.stiffness_changed();
-  path_ = solver_.checked_affine_path(0.0);
 
   const double total = scene_.loading.total, increment = scene_.stepping.increment;
   const long steps = total == 0 ? 0 : static_cast<long>(std::ceil(std::abs(total) / increment - 1e-9));

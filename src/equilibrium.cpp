@@ -95,11 +95,11 @@ struct EquilibriumSolver::Kinsol {
     }
   }
 
-  Kinsol(EquilibriumSolver* solver, sunindextype size) : owner(solver) {
+  Kinsol(EquilibriumSolver* solver, sunindextype unknowns_count) : owner(solver) {
     check_flag(SUNContext_Create(nullptr, &context), "SUNContext_Create");
-    unknowns = check_pointer(N_VNew_Serial(size, context), "N_VNew_Serial");
-    unit_scale = check_pointer(N_VNew_Serial(size, context), "N_VNew_Serial");
-    residual_scale = check_pointer(N_VNew_Serial(size, context), "N_VNew_Serial");
+    unknowns = check_pointer(N_VNew_Serial(unknowns_count, context), "N_VNew_Serial");
+    unit_scale = check_pointer(N_VNew_Serial(unknowns_count, context), "N_VNew_Serial");
+    residual_scale = check_pointer(N_VNew_Serial(unknowns_count, context), "N_VNew_Serial");
     N_VConst(1.0, unit_scale);
 
     jacobian = check_pointer(SUNMatNewEmpty(context), "SUNMatNewEmpty");
@@ -140,13 +140,32 @@ struct EquilibriumSolver::Kinsol {
 EquilibriumSolver::EquilibriumSolver(Model& model, const SolverOptions& options)
     : model_(model), options_(options), stiffness_(model), factor_(options.ordering) {
   kinsol_ = std::make_unique<Kinsol>(this, static_cast<sunindextype>(model.dofs.free_count));
+  find_boundary_bonds();
+}
+
+void EquilibriumSolver::update_loads() {
+  if (loads_current_) return;
+  const std::int64_t n = model_.dofs.free_count;
+  const Vector zero = Vector::Zero(n);
+  auto free_part = [&](const Vector& full) {
+    Vector part(n);
+    for (std::int64_t dof = 0; dof < model_.dofs.dof_count(); ++dof) {
+      if (model_.dofs.free_index[dof] >= 0) part[model_.dofs.free_index[dof]] = full[dof];
+    }
+    return part;
+  };
+  const Vector at0 = model_.internal_force(model_.full_displacement(zero, 0.0), boundary_bonds_);
+  const Vector at1 = model_.internal_force(model_.full_displacement(zero, 1.0), boundary_bonds_);
+  load0_ = free_part(model_.external_force - at0);
+  load1_ = free_part(at0 - at1);
+  loads_current_ = true;
 }
 
 EquilibriumSolver::~EquilibriumSolver() = default;
 
-double EquilibriumSolver::load_scale(double lambda) const {
-  const Vector r = model_.residual(Vector::Zero(model_.dofs.free_count), lambda);
-  return r.size() ? r.cwiseAbs().maxCoeff() : 0.0;
+double EquilibriumSolver::load_scale(double lambda) {
+  update_loads();
+  return load0_.size() ? (load0_ + lambda * load1_).cwiseAbs().maxCoeff() : 0.0;
 }
 
 void EquilibriumSolver::refactorize(const Vector& free_displacement, double lambda) {
@@ -160,6 +179,7 @@ void EquilibriumSolver::refactorize(const Vector& free_displacement, double lamb
 void EquilibriumSolver::update_factor(std::int64_t bond,
                                       const std::vector<std::pair<double, Vec3>>& weighted_directions,
                                       bool downdate) {
+  loads_current_ = false;
   if (!factor_current_) return;  // the next factorization assembles the new stiffness
   if (updates_since_factorization_ >= options_.refactor_every) {
     factor_current_ = false;
@@ -214,28 +234,70 @@ void EquilibriumSolver::set_contact(std::int64_t bond, bool active) {
                 /*downdate=*/!active);
 }
 
+double EquilibriumSolver::relative_residual(const Vector& free_displacement, double lambda) {
+  const double load = load_scale(lambda);
+  if (load == 0) return 0;
+  return model_.residual(free_displacement, lambda).cwiseAbs().maxCoeff() / load;
+}
+
+namespace {
+
+std::string ill_conditioned(double lambda, double residual, double tolerance) {
+  return "equilibrium at lambda " + std::to_string(lambda) + ": the residual after a fresh " +
+         "factorization is " + std::to_string(residual) + " of the load (tolerance " +
+         std::to_string(tolerance) + "): the stiffness is too ill-conditioned";
+}
+
+}  // namespace
+
 AffinePath EquilibriumSolver::checked_affine_path(double lambda) {
   AffinePath path = affine_path();
-  const double load = load_scale(lambda);
-  if (load == 0) return path;
-  const double residual = model_.residual(path.at(lambda), lambda).cwiseAbs().maxCoeff() / load;
-  if (residual <= options_.tolerance) return path;
+  if (relative_residual(path.at(lambda), lambda) <= options_.tolerance) return path;
   factor_current_ = false;
   path = affine_path();
-  const double fresh = model_.residual(path.at(lambda), lambda).cwiseAbs().maxCoeff() / load;
-  if (fresh > options_.tolerance) {
-    throw Error("equilibrium at lambda " + std::to_string(lambda) + ": the residual after a fresh "
-                "factorization is " + std::to_string(fresh) + " of the load (tolerance " +
-                std::to_string(options_.tolerance) + "): the stiffness is too ill-conditioned");
-  }
+  const double fresh = relative_residual(path.at(lambda), lambda);
+  if (fresh > options_.tolerance) throw Error(ill_conditioned(lambda, fresh, options_.tolerance));
   return path;
+}
+
+Vector EquilibriumSolver::checked_solve(double lambda) {
+  const std::int64_t n = model_.dofs.free_count;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (!factor_current_) refactorize(Vector::Zero(n), 0.0);
+    update_loads();
+    Vector u = load0_ + lambda * load1_;
+    if (n > 0) factor_.solve(u.data(), n, 1);
+    ++counters_.solves;
+    const double residual = relative_residual(u, lambda);
+    if (residual <= options_.tolerance) return u;
+    if (attempt == 1) throw Error(ill_conditioned(lambda, residual, options_.tolerance));
+    factor_current_ = false;
+  }
+  return {};
 }
 
 void EquilibriumSolver::supports_changed() {
   stiffness_ = StiffnessMatrix(model_);
   factor_.analyze(stiffness_);
-  factor_current_ = false;
   kinsol_ = std::make_unique<Kinsol>(this, static_cast<sunindextype>(model_.dofs.free_count));
+  factor_current_ = false;
+  find_boundary_bonds();
+}
+
+void EquilibriumSolver::find_boundary_bonds() {
+  loads_current_ = false;
+  boundary_bonds_.clear();
+  const int dim = model_.dim();
+  auto held = [&](std::int64_t node) {
+    for (int c = 0; c < dim; ++c) {
+      if (model_.dofs.free_index[node * dim + c] < 0) return true;
+    }
+    return false;
+  };
+  for (std::int64_t b = 0; b < model_.lattice.bond_count(); ++b) {
+    const Bond& bond = model_.lattice.bonds[b];
+    if (held(bond.i) || held(bond.j)) boundary_bonds_.push_back(b);
+  }
 }
 
 EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacement) {
@@ -284,11 +346,10 @@ AffinePath EquilibriumSolver::affine_path() {
   if (!model_.law->is_linear()) throw Error("affine_path: the bond law is not linear");
   const std::int64_t n = model_.dofs.free_count;
   if (!factor_current_) refactorize(Vector::Zero(n), 0.0);
-  const Vector r0 = model_.residual(Vector::Zero(n), 0.0);
-  const Vector r1 = model_.residual(Vector::Zero(n), 1.0);
+  update_loads();
   Eigen::MatrixXd rhs(n, 2);
-  rhs.col(0) = -r0;
-  rhs.col(1) = -(r1 - r0);
+  rhs.col(0) = load0_;
+  rhs.col(1) = load1_;
   if (n > 0) factor_.solve(rhs.data(), n, 2);
   ++counters_.solves;
   return {rhs.col(0), rhs.col(1)};

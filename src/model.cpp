@@ -162,33 +162,36 @@ Vector Model::full_displacement(const Vector& free_displacement, double lambda) 
 }
 
 Vec3 Model::node_displacement(const Vector& displacement, std::int64_t node) const {
-  Vec3 u = Vec3::Zero();
-  const std::vector<int> axes = lattice.axes();
-  for (int c = 0; c < dim(); ++c) u[axes[c]] = displacement[node * dim() + c];
-  return u;
+  if (lattice.dim == 2) return {displacement[2 * node], 0.0, displacement[2 * node + 1]};
+  return {displacement[3 * node], displacement[3 * node + 1], displacement[3 * node + 2]};
+}
+
+// Adds bond b's force to both its nodes: +t on j, -t on i (t its tension vector).
+void Model::add_bond_force(const Vector& displacement, std::int64_t b, Vector& force) const {
+  const bool in_contact = contact_capable(b) && contact_active[b];
+  if (!intact[b] && !in_contact) return;
+  const Bond& bond = lattice.bonds[b];
+  const Vec3& n0 = lattice.bond_direction[b];
+  const Vec3 du = bond_displacement(displacement, b);
+  const Vec3 t = intact[b] ? law->tension({n0, lattice.bond_length[b]}, du, normal_stiffness[b], shear_stiffness[b])
+                           : Vec3(normal_stiffness[b] * n0.dot(du) * n0);
+  const int d = dim();
+  for (int c = 0; c < d; ++c) {
+    const double component = t[d == 2 ? 2 * c : c];
+    force[bond.j * d + c] += component;
+    force[bond.i * d + c] -= component;
+  }
 }
 
 Vector Model::internal_force(const Vector& displacement) const {
-  const int d = dim();
-  const std::vector<int> axes = lattice.axes();
   Vector force = Vector::Zero(dofs.dof_count());
-  for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
-    const bool in_contact = contact_capable(b) && contact_active[b];
-    if (!intact[b] && !in_contact) continue;
-    const Bond& bond = lattice.bonds[b];
-    const Vec3 du = node_displacement(displacement, bond.j) - node_displacement(displacement, bond.i);
-    const Vec3 d0 = lattice.bond_direction[b] * lattice.bond_length[b];
-    Vec3 t;
-    if (intact[b]) {
-      t = law->tension(d0, du, normal_stiffness[b], shear_stiffness[b]);
-    } else {
-      t = normal_stiffness[b] * lattice.bond_direction[b].dot(du) * lattice.bond_direction[b];
-    }
-    for (int c = 0; c < d; ++c) {
-      force[bond.j * d + c] += t[axes[c]];
-      force[bond.i * d + c] -= t[axes[c]];
-    }
-  }
+  for (std::int64_t b = 0; b < lattice.bond_count(); ++b) add_bond_force(displacement, b, force);
+  return force;
+}
+
+Vector Model::internal_force(const Vector& displacement, const std::vector<std::int64_t>& bonds) const {
+  Vector force = Vector::Zero(dofs.dof_count());
+  for (std::int64_t b : bonds) add_bond_force(displacement, b, force);
   return force;
 }
 

@@ -12,7 +12,8 @@ std::vector<double> node_stresses(const Model& model, const Vector& displacement
     const Vec3 d0 = lattice.bond_direction[b] * lattice.bond_length[b];
     const Vec3 du = model.node_displacement(displacement, bond.j) -
                     model.node_displacement(displacement, bond.i);
-    const Vec3 t = model.law->tension(d0, du, model.normal_stiffness[b], model.shear_stiffness[b]);
+    const Vec3 t = model.law->tension({lattice.bond_direction[b], lattice.bond_length[b]}, du,
+                                      model.normal_stiffness[b], model.shear_stiffness[b]);
     const Mat3 dyad = d0 * t.transpose();
     stress[bond.i] += dyad;
     stress[bond.j] += dyad;

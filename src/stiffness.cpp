@@ -62,12 +62,12 @@ void StiffnessMatrix::assemble(const Model& model, const Vector& displacement) {
     if (!model.intact[bond] && !contact) continue;
     const Bond& pair = lattice.bonds[bond];
     const Vec3& n0 = lattice.bond_direction[bond];
-    const Vec3 d0 = n0 * lattice.bond_length[bond];
     const Vec3 du = model.node_displacement(displacement, pair.j) -
                     model.node_displacement(displacement, pair.i);
     const Mat3 tangent =
         contact ? Mat3(model.normal_stiffness[bond] * n0 * n0.transpose())
-                : model.law->tangent(d0, du, model.normal_stiffness[bond], model.shear_stiffness[bond]);
+                : model.law->tangent({n0, lattice.bond_length[bond]}, du, model.normal_stiffness[bond],
+                                     model.shear_stiffness[bond]);
     add_to_node(pair.i, tangent);
     add_to_node(pair.j, tangent);
     for (int a = 0; a < d; ++a)

@@ -23,16 +23,22 @@ struct BondDeformation {
   Vec3 shear = Vec3::Zero();  // ds
 };
 
+// A bond's reference geometry: unit vector n0 from node i to node j, and length L0 (m).
+struct BondReference {
+  const Vec3& direction;
+  double length;
+};
+
 class BondLaw {
  public:
   virtual ~BondLaw() = default;
-  // reference_vector = X_j - X_i, relative_displacement = u_j - u_i.
-  virtual BondDeformation deformation(const Vec3& reference_vector,
+  // relative_displacement = u_j - u_i.
+  virtual BondDeformation deformation(const BondReference& reference,
                                       const Vec3& relative_displacement) const = 0;
-  virtual Vec3 tension(const Vec3& reference_vector, const Vec3& relative_displacement,
-                       double kn, double ks) const = 0;
+  virtual Vec3 tension(const BondReference& reference, const Vec3& relative_displacement, double kn,
+                       double ks) const = 0;
   // d tension / d relative_displacement.
-  virtual Mat3 tangent(const Vec3& reference_vector, const Vec3& relative_displacement, double kn,
+  virtual Mat3 tangent(const BondReference& reference, const Vec3& relative_displacement, double kn,
                        double ks) const = 0;
   // True when tension is linear in the displacement (equilibrium paths are affine).
   virtual bool is_linear() const = 0;
@@ -40,11 +46,11 @@ class BondLaw {
 
 class SmallKinematics final : public BondLaw {
  public:
-  BondDeformation deformation(const Vec3& reference_vector,
+  BondDeformation deformation(const BondReference& reference,
                               const Vec3& relative_displacement) const override;
-  Vec3 tension(const Vec3& reference_vector, const Vec3& relative_displacement, double kn,
+  Vec3 tension(const BondReference& reference, const Vec3& relative_displacement, double kn,
                double ks) const override;
-  Mat3 tangent(const Vec3& reference_vector, const Vec3& relative_displacement, double kn,
+  Mat3 tangent(const BondReference& reference, const Vec3& relative_displacement, double kn,
                double ks) const override;
   bool is_linear() const override { return true; }
 };

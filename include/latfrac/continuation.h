@@ -30,7 +30,11 @@ class FractureContinuation {
   std::int64_t chattering_resolved() const { return chattering_resolved_; }
 
  private:
-  Vector displacement(double lambda) const;
+  // The full displacement at lambda: from the state of the current cascade when lambda
+  // is its lambda, from the affine path otherwise.
+  Vector displacement(double lambda);
+  // Re-equilibrates at lambda after the stiffness changed (one right-hand side).
+  void resolve(double lambda);
   // Breaks until no intact bond has f >= 1 at lambda.
   void cascade(double lambda, RunResult& result);
   // Opens and closes contacts until every active one is in compression and every
@@ -46,6 +50,10 @@ class FractureContinuation {
   FailureEvaluator evaluator_;
   FragmentDetector fragments_;
   AffinePath path_;
+  bool path_current_ = false;      // path_ describes the current stiffness
+  Vector state_;                   // free displacement at state_lambda_, when valid
+  double state_lambda_ = 0;
+  bool state_current_ = false;
   std::int64_t breaks_ = 0, chattering_resolved_ = 0;
   std::vector<FragmentEvent> fragment_log_;
   std::int64_t next_cascade_ = 1;

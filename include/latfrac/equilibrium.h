@@ -54,7 +54,10 @@ class EquilibriumSolver {
   AffinePath affine_path();
 
   // Call after changing the model's stiffness by other means: the factor is stale.
-  void stiffness_changed() { factor_current_ = false; }
+  void stiffness_changed() {
+    factor_current_ = false;
+    loads_current_ = false;
+  }
 
   // Removes bond b's spring stiffness from the factor (rank 2 in 2-D, 3 in 3-D); call
   // after marking it broken. A fresh factorization replaces the update after
@@ -67,13 +70,16 @@ class EquilibriumSolver {
   // The affine path of the current stiffness, its residual checked at lambda: when the
   // updated factor's answer misses the tolerance, refactorizes and solves again.
   AffinePath checked_affine_path(double lambda);
+  // The free displacement at lambda alone (one right-hand side), checked the same way:
+  // what a cascade at fixed lambda needs after each break.
+  Vector checked_solve(double lambda);
 
   // Call after the model's supports changed (a fragment held fixed): rebuilds the
   // stiffness pattern, the analysis and KINSOL's memory.
   void supports_changed();
 
   // max |R(0, lambda)|: the size of the load at lambda, N.
-  double load_scale(double lambda) const;
+  double load_scale(double lambda);
 
   const SolverCounters& counters() const { return counters_; }
   StiffnessMatrix& stiffness() { return stiffness_; }
@@ -83,6 +89,17 @@ class EquilibriumSolver {
   struct Kinsol;
   friend struct Kinsol;
   void refactorize(const Vector& free_displacement, double lambda);
+  // The loads on the free dofs at zero free displacement: load0 (gravity and the fixed
+  // part of the supports) and load1 (per unit lambda), so that R(0, lambda) = -(load0 +
+  // lambda load1). Only bonds that touch a prescribed dof contribute: the others are
+  // unstretched when every free dof is zero.
+  void update_loads();
+  void find_boundary_bonds();
+  std::vector<std::int64_t> boundary_bonds_;
+  Vector load0_, load1_;
+  bool loads_current_ = false;
+  // The relative residual of a free displacement at lambda, max |R| / max |R(0, lambda)|.
+  double relative_residual(const Vector& free_displacement, double lambda);
   // Rank update of the factor with the columns sqrt(w) (e_j - e_i) (x) v on the free dofs.
   void update_factor(std::int64_t bond, const std::vector<std::pair<double, Vec3>>& weighted_directions,
                      bool downdate);

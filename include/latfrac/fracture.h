@@ -22,7 +22,8 @@ struct CriticalBond {
 
 class FailureEvaluator {
  public:
-  FailureEvaluator(const Strength& strength, int dim);
+  // Reads the model's per-bond moduli, lengths and strengths once.
+  FailureEvaluator(const Strength& strength, const Model& model);
 
   // f of every bond (0 for broken bonds) and the break mode of each.
   void evaluate(const Model& model, const Vector& displacement, std::vector<double>& index,
@@ -36,6 +37,9 @@ class FailureEvaluator {
   FailureIndex bond_index(const Model& model, const Vector& displacement, std::int64_t bond,
                           const std::vector<double>& node_stress) const;
   CriterionParameters parameters_;
+  // Per bond: E / (L0 sigma0) and G / (L0 tau0), so that the normal and shear ratios are
+  // dn times the first and |ds| times the second.
+  std::vector<double> normal_scale_, shear_scale_;
 };
 
 }  // namespace latfrac

@@ -55,6 +55,8 @@ class Model {
   Vector full_displacement(const Vector& free_displacement, double lambda) const;
   // Internal (spring) force per dof: the gradient of the stored energy.
   Vector internal_force(const Vector& displacement) const;
+  // The same, summed over the listed bonds only.
+  Vector internal_force(const Vector& displacement, const std::vector<std::int64_t>& bonds) const;
   // Out-of-balance force on the free dofs: internal minus external. Zero at equilibrium.
   Vector residual(const Vector& free_displacement, double lambda) const;
   // Reaction forces on the prescribed dofs (internal minus external), zero on free dofs.
@@ -66,6 +68,8 @@ class Model {
     return node_displacement(displacement, lattice.bonds[bond].j) -
            node_displacement(displacement, lattice.bonds[bond].i);
   }
+  // Adds bond b's spring (or active contact) force to `force`.
+  void add_bond_force(const Vector& displacement, std::int64_t bond, Vector& force) const;
   // May broken bond b carry a contact spring?
   bool contact_capable(std::int64_t bond) const {
     return contact && !intact[bond] &&

@@ -1,0 +1,140 @@
+// Benchmark of one break in a cascade: factor downdate + re-solve at the cascade's lambda
+// (one right-hand side, with its residual check) +
+// criterion evaluation, against a full refactorization; and the criterion evaluation of
+// every bond against one re-solve. Prints a table.
+//
+//   build/bench/bench_breaking              # 2-D 100k and 3-D 50k nodes
+//   build/bench/bench_breaking 3 10000      # one case: dim and approximate node count
+//   build/bench/bench_breaking 2 100000 nesdis   # ... and the fill-reducing ordering
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include "latfrac/equilibrium.h"
+#include "latfrac/fracture.h"
+#include "latfrac/fragments.h"
+
+using namespace latfrac;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The paper's crust with the elliptic criterion, about `nodes` nodes, a = 100 m.
+Scene bench_scene(int dim, long nodes) {
+  Scene scene;
+  scene.name = "bench";
+  scene.lattice.dim = dim;
+  scene.lattice.spacing = 100.0;
+  scene.material = {2600.0, 100e9, 0.2};
+  scene.gravity = Gravity{9.81};
+  Strength strength;
+  strength.criterion = Criterion::elliptic;
+  strength.sigma0 = 50e6;
+  strength.friction_angle = 34.0;
+  scene.strength = strength;
+  const double a = scene.lattice.spacing;
+  if (dim == 2) {
+    const double height = std::sqrt(nodes * std::sqrt(3.0) / 2 / 2) * a;
+    scene.lattice.size = {2 * height, 0, height};
+  } else {
+    const double unit = std::cbrt(nodes / std::sqrt(2.0) / 4.5) * a;
+    scene.lattice.size = {3 * unit, unit, 1.5 * unit};
+  }
+  return scene;
+}
+
+void run_case(int dim, long nodes, Ordering ordering) {
+  Scene scene = bench_scene(dim, nodes);
+  scene.solver.ordering = ordering;
+  Model model = build_model(scene);
+  EquilibriumSolver solver(model, scene.solver);
+  const FailureEvaluator evaluator(*scene.strength, model);
+  const double lambda = 1e-4;
+
+  AffinePath path = solver.affine_path();  // analysis + supernodal factorization
+  auto start = Clock::now();
+  solver.stiffness_changed();
+  path = solver.affine_path();
+  const double refactorization = seconds_since(start);  // assemble + factorize + 2-RHS solve
+
+  start = Clock::now();
+  const int evaluations = 5;
+  CriticalBond critical;
+  for (int k = 0; k < evaluations; ++k) critical = evaluator.most_critical(model, model.full_displacement(path.at(lambda), lambda));
+  const double criterion = seconds_since(start) / evaluations;
+
+  // Breaks of random bonds that leave the body supported: downdate, re-solve and check,
+  // evaluate the criterion. The first update converts the factor to simplicial LDL'.
+  const FragmentDetector fragments(model);
+  std::mt19937_64 random(7);
+  std::uniform_int_distribution<std::int64_t> pick(0, model.lattice.bond_count() - 1);
+  const int breaks = 10;
+  double update = 0, resolve = 0, evaluate = 0;
+  for (int done = -1; done < breaks;) {
+    const std::int64_t bond = pick(random);
+    if (!model.intact[bond]) continue;
+    model.intact[bond] = 0;
+    if (!fragments.unsupported_after_break(model, bond).empty()) {
+      model.intact[bond] = 1;
+      continue;
+    }
+    auto t0 = Clock::now();
+    solver.remove_bond(bond);
+    auto t1 = Clock::now();
+    const Vector u = solver.checked_solve(lambda);
+    auto t2 = Clock::now();
+    critical = evaluator.most_critical(model, model.full_displacement(u, lambda));
+    auto t3 = Clock::now();
+    if (done++ < 0) continue;  // the first break pays the conversion to LDL'; reported apart
+    update += std::chrono::duration<double>(t1 - t0).count();
+    resolve += std::chrono::duration<double>(t2 - t1).count();
+    evaluate += std::chrono::duration<double>(t3 - t2).count();
+  }
+  update /= breaks;
+  resolve /= breaks;
+  evaluate /= breaks;
+  const double per_break = update + resolve + evaluate;
+  std::printf("| %d-D | %8ld | %9.3f | %9.4f | %9.4f | %9.4f | %9.4f | %6.1f %% | %9.4f | %6.1f %% |\n", dim,
+              static_cast<long>(model.lattice.node_count()), refactorization, update, resolve, evaluate,
+              per_break, 100 * per_break / refactorization, criterion, 100 * criterion / resolve);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::printf("| dim | nodes | refactorize s | update s | re-solve + check s | criterion s | per break s "
+              "| break / refactorize | all-bond criterion s | criterion / re-solve |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+  std::fflush(stdout);
+  std::vector<std::pair<int, long>> cases = {{2, 100000}, {3, 50000}};
+  if (argc >= 3) cases = {{std::stoi(argv[1]), std::stol(argv[2])}};
+  const std::string name = argc == 4 ? argv[3] : "metis";
+  const Ordering ordering = name == "nesdis" ? Ordering::nesdis : name == "amd" ? Ordering::amd : Ordering::metis;
+  for (const auto& [dim, nodes] : cases) {
+    const pid_t child = fork();
+    if (child == 0) {
+      try {
+        run_case(dim, nodes, ordering);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench: %s\n", e.what());
+        _exit(1);
+      }
+      _exit(0);
+    }
+    int status = 0;
+    waitpid(child, &status, 0);
+  }
+  std::printf("\nper break = factor downdate + re-solve at lambda with its residual check "
+              "+ criterion of every bond; refactorize = assembly + numeric factorization + solve.\n");
+  return 0;
+}
