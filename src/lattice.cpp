@@ -179,7 +179,7 @@ LatticeCount count_lattice(const LatticeSpec& spec) {
     count.nodes = static_cast<std::int64_t>(rows * per_row);
     count.bonds = 3 * count.nodes;
   } else {
-    count.nodes = static_cast<std::int64_t>(rows * (grid.intervals_y + 1.0) * per_row);  // B layers: one row fewer, offset
+    count.nodes = static_cast<std::int64_t>(rows * (grid.intervals_y + 1.0) * per_row);
     count.bonds = (spec.next_nearest ? 9 : 6) * count.nodes;
   }
   return count;

@@ -23,15 +23,20 @@ int rank_of(FaceCondition condition) {
   return 0;
 }
 
-const Layer* layer_at(const std::vector<Layer>& layers, double z) {
-  for (const Layer& layer : layers) {
-    if (z >= layer.z_min && z < layer.z_max) return &layer;
+// The layer holding height z. The lattice's top row can lie above the requested height
+// (the box is filled with whole row pitches), so a layer that reaches the requested top
+// also holds everything above it.
+const Layer* layer_at(const Scene& scene, double z) {
+  const double top = scene.lattice.size[2];
+  for (const Layer& layer : scene.layers) {
+    const bool reaches_top = layer.z_max >= top * (1 - 1e-12);
+    if (z >= layer.z_min && (z < layer.z_max || reaches_top)) return &layer;
   }
   return nullptr;
 }
 
 const Material& material_at(const Scene& scene, double z) {
-  const Layer* layer = layer_at(scene.layers, z);
+  const Layer* layer = layer_at(scene, z);
   return layer ? layer->material : scene.material;
 }
 
@@ -52,7 +57,7 @@ void assign_strengths(const Scene& scene, Model& model) {
   for (std::int64_t b = 0; b < bonds; ++b) {
     const Bond& bond = lattice.bonds[b];
     const double mid_z = 0.5 * (lattice.positions[bond.i].z() + lattice.positions[bond.j].z());
-    const Layer* layer = layer_at(scene.layers, mid_z);
+    const Layer* layer = layer_at(scene, mid_z);
     const Material& material = layer ? layer->material : scene.material;
     model.bond_young[b] = material.young;
     model.bond_shear_modulus[b] = material.young / (2 * (1 + material.poisson));
