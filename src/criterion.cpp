@@ -22,21 +22,6 @@ void require(bool condition, const std::string& message) {
 
 bool needs_shear_strength(Criterion criterion) { return criterion != Criterion::tensile; }
 
-// The problem-file spelling (kept here so that this file needs nothing but the Strength type).
-const char* criterion_name(Criterion criterion) {
-  switch (criterion) {
-    case Criterion::tensile:
-      return "tensile";
-    case Criterion::tensile_or_shear:
-      return "tensile_or_shear";
-    case Criterion::elliptic:
-      return "elliptic";
-    case Criterion::drucker_prager:
-      return "drucker_prager";
-  }
-  return "?";
-}
-
 }  // namespace
 
 DruckerPragerConstants drucker_prager_constants(double friction_angle_deg, int dim) {
@@ -66,7 +51,7 @@ CriterionParameters resolve_criterion(const Strength& strength, int dim) {
   const auto& psi = strength.friction_angle;
   require(!psi || (*psi >= 0 && *psi < 90), "friction_angle must satisfy 0 <= psi < 90 (degrees)");
   require(!needs_shear_strength(strength.criterion) || strength.tau0 || psi,
-          "criterion " + std::string(criterion_name(strength.criterion)) +
+          "criterion " + std::string(to_string(strength.criterion)) +
               " needs a shear strength: tau0 > 0 (Pa), or friction_angle (degrees) to derive it");
   require(strength.criterion != Criterion::drucker_prager || psi,
           "criterion drucker_prager needs friction_angle (degrees)");

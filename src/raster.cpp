@@ -1,6 +1,8 @@
 // The RGB canvas: clipped drawing primitives, bitmap text and PNG writing with libpng.
 #include "raster.h"
 
+#include "atomic_write.h"
+
 #include <png.h>
 
 #include <algorithm>
@@ -157,25 +159,20 @@ bool write_png_rows(std::FILE* file, int width, int height, const std::uint8_t* 
 }  // namespace
 
 void Canvas::write_png(const std::string& path) const {
-  const std::string partial = path + ".partial";
-  std::FILE* file = std::fopen(partial.c_str(), "wb");
-  if (file == nullptr)
-    throw Error("cannot write picture: fopen(\"" + partial + "\"): " + std::strerror(errno));
-  char message[256] = "";
-  bool written = write_png_rows(file, width_, height_, rgb_.data(), message);
-  if (std::fclose(file) != 0 && written) {
-    std::snprintf(message, sizeof message, "fclose: %s", std::strerror(errno));
-    written = false;
-  }
-  if (!written) {
-    std::remove(partial.c_str());
-    throw Error("cannot write picture \"" + partial + "\": " + message);
-  }
-  if (std::rename(partial.c_str(), path.c_str()) != 0) {
-    const int rename_errno = errno;
-    std::remove(partial.c_str());
-    throw Error("cannot write picture: rename(\"" + partial + "\", \"" + path +
-                "\"): " + std::strerror(rename_errno));
+  try {
+    write_atomically(path, [&](const std::string& partial) {
+      std::FILE* file = std::fopen(partial.c_str(), "wb");
+      if (file == nullptr) throw Error(std::string("cannot create the file: ") + std::strerror(errno));
+      char message[256] = "";
+      bool written = write_png_rows(file, width_, height_, rgb_.data(), message);
+      if (std::fclose(file) != 0 && written) {
+        std::snprintf(message, sizeof message, "fclose: %s", std::strerror(errno));
+        written = false;
+      }
+      if (!written) throw Error(message);
+    });
+  } catch (const Error& error) {
+    throw Error("cannot write picture '" + path + "': " + error.what());
   }
 }
 
