@@ -2,11 +2,12 @@
 #include "latfrac/continuation.h"
 
 #include <cmath>
-#include <iostream>
+#include <algorithm>
 #include <set>
 #include <string>
 
 #include "latfrac/error.h"
+#include "latfrac/events.h"
 #include "latfrac/snapshot.h"
 
 namespace latfrac {
@@ -22,11 +23,15 @@ FractureContinuation::FractureContinuation(Model& model, const Scene& scene, Equ
 
 Vector FractureContinuation::displacement(double lambda) {
   if (state_current_ && lambda == state_lambda_) return model_.full_displacement(state_, lambda);
+  return model_.full_displacement(current_path(lambda).at(lambda), lambda);
+}
+
+const AffinePath& FractureContinuation::current_path(double lambda) {
   if (!path_current_) {
     path_ = solver_.checked_affine_path(lambda);
     path_current_ = true;
   }
-  return model_.full_displacement(path_.at(lambda), lambda);
+  return path_;
 }
 
 void FractureContinuation::resolve(double lambda) {
@@ -84,33 +89,45 @@ void FractureContinuation::settle_contacts(double lambda) {
   }
 }
 
-void FractureContinuation::cascade(double lambda, RunResult& result) {
-  std::int64_t cascade_id = -1;
-  Vector u = displacement(lambda);
-  for (;;) {
-    const CriticalBond critical = evaluator_.most_critical(model_, u);
-    if (critical.bond < 0 || critical.index < 1) return;
-    if (cascade_id < 0) cascade_id = next_cascade_++;
-    const std::int64_t bond = critical.bond;
-    model_.intact[bond] = 0;
-    result.events.push_back({lambda, bond, critical.index, static_cast<std::int8_t>(critical.mode), cascade_id});
-    ++breaks_;
-    // A bond that breaks in compression becomes a closed contact at once.
-    const bool closes = model_.contact_capable(bond) &&
-                        model_.lattice.bond_direction[bond].dot(model_.bond_displacement(u, bond)) < 0;
-    model_.contact_active[bond] = closes;
-    if (!hold_unsupported(fragments_.unsupported_after_break(model_, bond), lambda)) {
-      solver_.remove_bond(bond);
-      if (closes) solver_.set_contact(bond, true);
-    }
-    resolve(lambda);
-    if (model_.contact) settle_contacts(lambda);
-    u = displacement(lambda);
-    progress_.update(lambda, breaks_);
+void FractureContinuation::break_bond(std::int64_t bond, const FailureIndex& failure, double lambda,
+                                      std::int64_t cascade_id, RunResult& result) {
+  const Vector u = displacement(lambda);
+  model_.intact[bond] = 0;
+  result.events.push_back({lambda, bond, failure.value, static_cast<std::int8_t>(failure.mode), cascade_id});
+  ++breaks_;
+  // A bond that breaks in compression becomes a closed contact at once.
+  const bool closes = model_.contact_capable(bond) &&
+                      model_.lattice.bond_direction[bond].dot(model_.bond_displacement(u, bond)) < 0;
+  model_.contact_active[bond] = closes;
+  if (!hold_unsupported(fragments_.unsupported_after_break(model_, bond), lambda)) {
+    solver_.remove_bond(bond);
+    if (closes) solver_.set_contact(bond, true);
+  }
+  resolve(lambda);
+  if (model_.contact) settle_contacts(lambda);
+  progress_.update(lambda, breaks_);
+}
+
+// A group of bonds tied for the largest f (within rounding) failed together: they break
+// one after another, each followed by re-equilibration, without re-testing the others of
+// the group (docs/robustness.md).
+void FractureContinuation::break_group(const std::vector<CriticalBond>& group, double lambda,
+                                       std::int64_t cascade_id, RunResult& result) {
+  for (const CriticalBond& member : group) {
+    if (model_.intact[member.bond]) break_bond(member.bond, {member.index, member.mode}, lambda, cascade_id, result);
   }
 }
 
-void FractureContinuation::run_fixed_step(RunResult& result) {
+void FractureContinuation::cascade(double lambda, RunResult& result, std::int64_t cascade_id) {
+  for (;;) {
+    const std::vector<CriticalBond> group = evaluator_.critical_group(model_, displacement(lambda), 1.0);
+    if (group.empty()) return;
+    if (cascade_id < 0) cascade_id = next_cascade_++;
+    break_group(group, lambda, cascade_id, result);
+  }
+}
+
+void FractureContinuation::start(RunResult& result) {
   // Pre-cut bonds are broken from the start: events of mode 2 at lambda 0, cascade 0.
   for (std::int64_t b = 0; b < model_.lattice.bond_count(); ++b) {
     if (model_.precut[b]) result.events.push_back({0.0, b, 0.0, static_cast<std::int8_t>(BreakMode::precut), 0});
@@ -133,11 +150,19 @@ void FractureContinuation::run_fixed_step(RunResult& result) {
   }
   if (!loose.empty()) solver_.supports_changed();
   solver_.stiffness_changed();
+}
 
+std::vector<double> FractureContinuation::snapshot_lambdas() const {
+  std::vector<double> snapshots = scene_.output.snapshots;
+  if (snapshots.empty()) snapshots.push_back(scene_.loading.total);
+  return snapshots;
+}
+
+void FractureContinuation::run_fixed_step(RunResult& result) {
+  start(result);
   const double total = scene_.loading.total, increment = scene_.stepping.increment;
   const long steps = total == 0 ? 0 : static_cast<long>(std::ceil(std::abs(total) / increment - 1e-9));
-  std::vector<double> snapshots = scene_.output.snapshots;
-  if (snapshots.empty()) snapshots.push_back(total);
+  const std::vector<double> snapshots = snapshot_lambdas();
   std::size_t next_snapshot = 0;
   for (long k = 0; k <= steps; ++k) {
     const double lambda = k == steps ? total : std::copysign(k * increment, total);
@@ -150,6 +175,63 @@ void FractureContinuation::run_fixed_step(RunResult& result) {
     }
     progress_.update(lambda, breaks_);
   }
+  result.fragments = fragment_log_;
+}
+
+// From the equilibrium at lambda_c: the next event on the current affine path is the
+// earliest of the next bond crossing, the next contact switch, and the end. At a
+// crossing the bond that reached f = 1 breaks (explicitly: roundoff may leave its f a
+// hair below 1), then the cascade runs at that lambda exactly as in the fixed-step method.
+void FractureContinuation::run_event_driven(RunResult& result) {
+  start(result);
+  const double total = scene_.loading.total;
+  const std::vector<double> snapshots = snapshot_lambdas();
+  std::size_t next_snapshot = 0;
+  auto record_snapshots_until = [&](double lambda, bool inclusive) {
+    while (next_snapshot < snapshots.size() &&
+           (inclusive ? std::abs(snapshots[next_snapshot]) <= std::abs(lambda)
+                      : std::abs(snapshots[next_snapshot]) < std::abs(lambda))) {
+      const double at = snapshots[next_snapshot++];
+      result.snapshots.push_back(make_snapshot(model_, displacement(at), at, &evaluator_));
+    }
+  };
+
+  double lambda = 0;
+  if (model_.contact) settle_contacts(lambda);
+  cascade(lambda, result);
+  while (lambda != total) {
+    const AffinePath& path = current_path(lambda);
+    const PathCrossing crossing = next_break(model_, evaluator_, path, lambda, total);
+    const PathCrossing contact = model_.contact ? next_contact_switch(model_, path, lambda, total) : PathCrossing{};
+    const bool contact_first = contact.found() && (!crossing.found() || std::abs(contact.lambda) < std::abs(crossing.lambda));
+    const double next = contact_first ? contact.lambda : crossing.found() ? crossing.lambda : total;
+    record_snapshots_until(next, false);
+    lambda = next;
+    if (contact_first) {
+      const bool close = !model_.contact_active[contact.bond];
+      model_.contact_active[contact.bond] = close;
+      solver_.set_contact(contact.bond, close);
+      if (!close) hold_unsupported(fragments_.unsupported_after_break(model_, contact.bond), lambda);
+      resolve(lambda);
+      settle_contacts(lambda);
+      cascade(lambda, result);
+    } else if (crossing.found()) {
+      // Every bond that reached f = 1 at this lambda, within rounding, breaks now.
+      const std::int64_t cascade_id = next_cascade_++;
+      std::vector<double> index;
+      std::vector<BreakMode> modes;
+      evaluator_.evaluate(model_, displacement(lambda), index, modes);
+      std::vector<CriticalBond> group;
+      for (std::int64_t bond : crossing.tied) group.push_back({bond, index[bond], modes[bond]});
+      std::sort(group.begin(), group.end(), [](const CriticalBond& p, const CriticalBond& q) {
+        return p.index != q.index ? p.index > q.index : p.bond < q.bond;
+      });
+      break_group(group, lambda, cascade_id, result);
+      cascade(lambda, result, cascade_id);
+    }
+    progress_.update(lambda, breaks_);
+  }
+  record_snapshots_until(total, true);
   result.fragments = fragment_log_;
 }
 

@@ -1,6 +1,8 @@
 // Failure indices of the bonds of a model.
 #include "latfrac/fracture.h"
 
+#include <algorithm>
+
 #include "latfrac/node_stress.h"
 
 namespace latfrac {
@@ -51,38 +53,63 @@ void FailureEvaluator::evaluate(const Model& model, const Vector& displacement, 
   }
 }
 
-// The hot loop of every cascade. For the stress-based criteria it ranks bonds by a
-// quantity monotone in f that needs no square root (the normal ratio, the larger of the
-// squared ratios, or f itself for the ellipse), then computes the winner's f exactly.
-CriticalBond FailureEvaluator::most_critical(const Model& model, const Vector& displacement) const {
-  std::vector<double> node_stress;
+// The hot loop of every cascade. For the stress-based criteria the ranking quantity is
+// the normal ratio (tensile), f itself (elliptic) or the larger squared ratio
+// (tensile_or_shear): monotone in f, and free of square roots.
+double FailureEvaluator::rank(const Model& model, const Vector& displacement, std::int64_t b,
+                              const std::vector<double>& node_stress) const {
   const Criterion criterion = parameters_.criterion;
-  if (criterion == Criterion::drucker_prager) node_stress = node_stresses(model, displacement);
-  std::int64_t best = -1;
-  double best_rank = 0;
+  if (criterion == Criterion::drucker_prager) return bond_index(model, displacement, b, node_stress).value;
+  const Vec3& n0 = model.lattice.bond_direction[b];
+  const Vec3 du = model.bond_displacement(displacement, b);
+  const double dn = n0.dot(du);
+  const double normal = std::max(dn, 0.0) * normal_scale_[b];
+  const double shear_squared = std::max(du.squaredNorm() - dn * dn, 0.0) * shear_scale_[b] * shear_scale_[b];
+  return criterion == Criterion::tensile    ? normal
+         : criterion == Criterion::elliptic ? normal * normal + shear_squared
+                                            : std::max(normal * normal, shear_squared);
+}
+
+double FailureEvaluator::rank_tolerance() const {
+  // The squared ratio of tensile_or_shear doubles the relative spread; a margin of two
+  // more keeps every tied bond among the candidates (the exact f decides).
+  return 4 * tie_tolerance;
+}
+
+CriticalBond FailureEvaluator::most_critical(const Model& model, const Vector& displacement) const {
+  const std::vector<CriticalBond> group = critical_group(model, displacement, 0.0);
+  return group.empty() ? CriticalBond{} : group.front();
+}
+
+std::vector<CriticalBond> FailureEvaluator::critical_group(const Model& model, const Vector& displacement,
+                                                           double threshold) const {
+  std::vector<double> node_stress;
+  if (parameters_.criterion == Criterion::drucker_prager) node_stress = node_stresses(model, displacement);
+  const double tolerance = rank_tolerance();
+  double best = 0;
+  std::vector<std::int64_t> candidates;
   for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
     if (!model.intact[b]) continue;
-    double rank;
-    if (criterion == Criterion::drucker_prager) {
-      rank = bond_index(model, displacement, b, node_stress).value;
-    } else {
-      const Vec3& n0 = model.lattice.bond_direction[b];
-      const Vec3 du = model.bond_displacement(displacement, b);
-      const double dn = n0.dot(du);
-      const double normal = std::max(dn, 0.0) * normal_scale_[b];
-      const double shear_squared = std::max(du.squaredNorm() - dn * dn, 0.0) * shear_scale_[b] * shear_scale_[b];
-      rank = criterion == Criterion::tensile           ? normal
-             : criterion == Criterion::elliptic        ? normal * normal + shear_squared
-                                                       : std::max(normal * normal, shear_squared);
-    }
-    if (best < 0 || rank > best_rank) {
-      best = b;
-      best_rank = rank;
-    }
+    const double r = rank(model, displacement, b, node_stress);
+    if (r <= 0 || r < best * (1 - tolerance)) continue;
+    candidates.push_back(b);
+    best = std::max(best, r);
   }
-  if (best < 0) return {};
-  const FailureIndex f = bond_index(model, displacement, best, node_stress);
-  return {best, f.value, f.mode};
+  std::vector<CriticalBond> group;
+  for (std::int64_t b : candidates) {
+    if (rank(model, displacement, b, node_stress) < best * (1 - tolerance)) continue;
+    const FailureIndex f = bond_index(model, displacement, b, node_stress);
+    group.push_back({b, f.value, f.mode});
+  }
+  if (group.empty()) return group;
+  const double largest =
+      std::max_element(group.begin(), group.end(), [](auto& p, auto& q) { return p.index < q.index; })->index;
+  std::erase_if(group, [&](const CriticalBond& c) { return c.index < largest * (1 - tie_tolerance); });
+  std::sort(group.begin(), group.end(), [](const CriticalBond& p, const CriticalBond& q) {
+    return p.index != q.index ? p.index > q.index : p.bond < q.bond;
+  });
+  if (largest < threshold) group.clear();
+  return group;
 }
 
 }  // namespace latfrac

@@ -39,9 +39,6 @@ Provenance provenance_of(const Scene& scene, const RunOptions& options) {
 
 std::vector<std::string> unsupported_effects(const Scene& scene) {
   std::vector<std::string> missing;
-  if (scene.strength && scene.stepping.method == SteppingMethod::event) {
-    missing.push_back("stepping.method = \"event\" (use \"fixed\" with an increment)");
-  }
   if (scene.large_kinematics) missing.push_back("[large_kinematics]");
   if (scene.solver.method == EquilibriumMethod::relaxation) missing.push_back("solver.method = \"relaxation\"");
   return missing;
@@ -66,7 +63,11 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   if (scene.strength) {
     result.scene.criterion = to_string(scene.strength->criterion);
     FractureContinuation continuation(model, scene, solver, progress);
-    continuation.run_fixed_step(result);
+    if (scene.stepping.method == SteppingMethod::event) {
+      continuation.run_event_driven(result);
+    } else {
+      continuation.run_fixed_step(result);
+    }
     result.summary.breaks = continuation.breaks();
     result.summary.contact_cycles = continuation.chattering_resolved();
   } else {

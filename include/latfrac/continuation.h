@@ -1,4 +1,5 @@
-// Fracture along the extension strain lambda: the paper's fixed-step algorithm.
+// Fracture along the extension strain lambda: the paper's fixed-step algorithm, and the
+// event-driven algorithm that locates each break exactly.
 //
 // lambda_k = k ds (the last step ends at loading.total). At each step: equilibrium, then
 // the cascade { find the intact bond with the largest f; if f < 1 stop; break it;
@@ -25,6 +26,9 @@ class FractureContinuation {
 
   // Runs from lambda = 0 to loading.total; appends events and snapshots to result.
   void run_fixed_step(RunResult& result);
+  // The same with exact events: each break at the lambda where its bond reaches f = 1
+  // (closed-form crossings on the affine path; docs/model.md, section 8).
+  void run_event_driven(RunResult& result);
 
   std::int64_t breaks() const { return breaks_; }
   std::int64_t chattering_resolved() const { return chattering_resolved_; }
@@ -33,10 +37,21 @@ class FractureContinuation {
   // The full displacement at lambda: from the state of the current cascade when lambda
   // is its lambda, from the affine path otherwise.
   Vector displacement(double lambda);
+  // The affine path of the current stiffness (solved, residual checked, when stale).
+  const AffinePath& current_path(double lambda);
   // Re-equilibrates at lambda after the stiffness changed (one right-hand side).
   void resolve(double lambda);
-  // Breaks until no intact bond has f >= 1 at lambda.
-  void cascade(double lambda, RunResult& result);
+  // Pre-cut events, the initial contact state, parts held from the start.
+  void start(RunResult& result);
+  std::vector<double> snapshot_lambdas() const;
+  // Breaks until no intact bond has f >= 1 at lambda; a new cascade id unless given.
+  void cascade(double lambda, RunResult& result, std::int64_t cascade_id = -1);
+  // Breaks a group of tied bonds in its order (largest f, then lowest id).
+  void break_group(const std::vector<CriticalBond>& group, double lambda, std::int64_t cascade_id,
+                   RunResult& result);
+  // Breaks one bond at lambda and re-equilibrates (contacts settled).
+  void break_bond(std::int64_t bond, const FailureIndex& failure, double lambda, std::int64_t cascade_id,
+                  RunResult& result);
   // Opens and closes contacts until every active one is in compression and every
   // inactive one is open.
   void settle_contacts(double lambda);

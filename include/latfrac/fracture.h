@@ -30,12 +30,23 @@ class FailureEvaluator {
                 std::vector<BreakMode>& mode) const;
   // The intact bond with the largest f; ties go to the lowest bond id.
   CriticalBond most_critical(const Model& model, const Vector& displacement) const;
+  // The bonds tied for the largest f (within tie_tolerance relative), largest f first,
+  // then lowest id; empty when that f is below `threshold`.
+  std::vector<CriticalBond> critical_group(const Model& model, const Vector& displacement,
+                                           double threshold) const;
+  // Failure indices equal to this relative tolerance count as equal (docs/robustness.md).
+  static constexpr double tie_tolerance = 1e-12;
 
   const CriterionParameters& parameters() const { return parameters_; }
 
  private:
   FailureIndex bond_index(const Model& model, const Vector& displacement, std::int64_t bond,
                           const std::vector<double>& node_stress) const;
+  // A quantity that grows with f and is cheap to compute (no square root), and the
+  // relative tolerance in it that matches tie_tolerance in f.
+  double rank(const Model& model, const Vector& displacement, std::int64_t bond,
+              const std::vector<double>& node_stress) const;
+  double rank_tolerance() const;
   CriterionParameters parameters_;
   // Per bond: E / (L0 sigma0) and G / (L0 tau0), so that the normal and shear ratios are
   // dn times the first and |ds| times the second.

@@ -1,0 +1,150 @@
+// Event-driven breaking: exact first breaks, independence from stepping parameters,
+// convergence of the fixed-step method to it, mirror symmetry and determinism.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "latfrac/model.h"
+#include "latfrac/run.h"
+#include "scenes.h"
+
+using namespace latfrac;
+
+namespace {
+
+Scene strip_scene(Criterion criterion) {
+  Scene scene = testing::box_scene(2, 1.0, {20.0, 0, 10.0}, false);
+  Strength strength;
+  strength.criterion = criterion;
+  strength.sigma0 = 50e6;
+  strength.friction_angle = 30.0;
+  scene.strength = strength;
+  scene.stepping = {SteppingMethod::event, 0};
+  return scene;
+}
+
+// A small crust: gravity, a pre-cut from the surface, the tensile criterion.
+Scene notched_scene() {
+  Scene scene = testing::box_scene(2, 1000.0, {16e3, 0, 8e3}, true);
+  Strength strength;
+  strength.criterion = Criterion::tensile;
+  strength.sigma0 = 50e6;
+  scene.strength = strength;
+  scene.precuts.push_back({{8250, 0, 9000}, {8250, 0, 5500}, {}, {}, {}});
+  scene.loading.total = 5e-4;
+  scene.stepping = {SteppingMethod::event, 0};
+  return scene;
+}
+
+std::set<std::int64_t> broken_set(const RunResult& result) {
+  std::set<std::int64_t> broken;
+  for (const BreakEvent& e : result.events) {
+    if (e.mode != 2) broken.insert(e.bond);
+  }
+  return broken;
+}
+
+double symmetric_difference(const std::set<std::int64_t>& a, const std::set<std::int64_t>& b) {
+  std::size_t differ = 0;
+  for (auto x : a) differ += !b.count(x);
+  for (auto x : b) differ += !a.count(x);
+  return b.empty() ? static_cast<double>(differ) : static_cast<double>(differ) / b.size();
+}
+
+}  // namespace
+
+TEST_CASE("Event-driven breaking finds the analytic first break to 1e-12", "[continuation]") {
+  // Rollers on top and base: every horizontal bond has sigma_n = E lambda exactly, so the
+  // tensile criterion first fails at lambda* = sigma0 / E = 5e-4.
+  Scene scene = strip_scene(Criterion::tensile);
+  scene.faces[static_cast<int>(Face::z_max)] = FaceCondition::roller;
+  scene.loading.total = 1e-3;
+  const RunResult event = run_scene(scene, {});
+  REQUIRE(!event.events.empty());
+  CHECK(event.events.front().lambda == Approx(5e-4).epsilon(1e-12));
+  CHECK(event.events.front().failure_index == Approx(1.0).epsilon(1e-12));
+  // The fixed-step method finds it within one increment.
+  const double ds = 1.7e-4;
+  scene.stepping = {SteppingMethod::fixed, ds};
+  const RunResult fixed = run_scene(scene, {});
+  REQUIRE(!fixed.events.empty());
+  CHECK(fixed.events.front().lambda >= 5e-4);
+  CHECK(fixed.events.front().lambda < 5e-4 + ds);
+}
+
+TEST_CASE("The event-driven result depends on no stepping parameter", "[continuation]") {
+  Scene scene = notched_scene();
+  const RunResult reference = run_scene(scene, {});
+  REQUIRE(broken_set(reference).size() > 3);
+  scene.stepping.increment = 1e-3;  // ignored by the event-driven method
+  scene.output.snapshots = {1e-4, 2.5e-4, 5e-4};
+  const RunResult other = run_scene(scene, {});
+  REQUIRE(other.events.size() == reference.events.size());
+  for (std::size_t k = 0; k < reference.events.size(); ++k) {
+    CHECK(other.events[k].bond == reference.events[k].bond);
+    CHECK(other.events[k].lambda == reference.events[k].lambda);
+  }
+}
+
+TEST_CASE("Fixed-step runs converge to the event-driven result as ds shrinks", "[continuation]") {
+  Scene scene = notched_scene();
+  const std::set<std::int64_t> reference = broken_set(run_scene(scene, {}));
+  std::vector<double> differences;
+  for (double ds : {1e-4, 1e-5, 1e-6}) {
+    scene.stepping = {SteppingMethod::fixed, ds};
+    differences.push_back(symmetric_difference(broken_set(run_scene(scene, {})), reference));
+  }
+  INFO("broken-set differences at ds = 1e-4, 1e-5, 1e-6: " << differences[0] << ", " << differences[1]
+                                                          << ", " << differences[2]);
+  CHECK(differences[2] <= differences[0]);
+  CHECK(differences[2] == 0.0);
+}
+
+TEST_CASE("A mirror-symmetric scene breaks mirror pairs at equal lambda, the same on every run",
+          "[continuation]") {
+  Scene scene = testing::box_scene(2, 1000.0, {16e3, 0, 8e3}, true);
+  Strength strength;
+  strength.criterion = Criterion::elliptic;
+  strength.sigma0 = 50e6;
+  strength.friction_angle = 34.0;
+  strength.tau0_factor = 3.0;
+  scene.strength = strength;
+  scene.loading.total = 2e-3;
+  scene.stepping = {SteppingMethod::event, 0};
+  const RunResult result = run_scene(scene, {});
+  const Model model = build_model(scene);
+  // The mirror image of each bond about x = L / 2.
+  std::map<std::pair<long, long>, std::int64_t> node_at;
+  auto key = [](const Vec3& p) { return std::make_pair(std::lround(p.x() * 8), std::lround(p.z() * 8)); };
+  for (std::int64_t n = 0; n < model.lattice.node_count(); ++n) node_at[key(model.lattice.positions[n])] = n;
+  std::map<std::pair<std::int64_t, std::int64_t>, std::int64_t> bond_of;
+  for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
+    bond_of[{model.lattice.bonds[b].i, model.lattice.bonds[b].j}] = b;
+  }
+  auto mirror = [&](std::int64_t b) {
+    auto image = [&](std::int64_t n) {
+      Vec3 p = model.lattice.positions[n];
+      p.x() = model.lattice.extent.x() - p.x();
+      return node_at.at(key(p));
+    };
+    const std::int64_t i = image(model.lattice.bonds[b].i), j = image(model.lattice.bonds[b].j);
+    return bond_of.at({std::min(i, j), std::max(i, j)});
+  };
+  std::map<std::int64_t, double> broken_at;
+  for (const BreakEvent& e : result.events) broken_at[e.bond] = e.lambda;
+  REQUIRE(broken_at.size() >= 2);
+  for (const auto& [bond, lambda] : broken_at) {
+    const std::int64_t partner = mirror(bond);
+    INFO("bond " << bond << " (lambda " << lambda << "), mirror " << partner);
+    REQUIRE(broken_at.count(partner));
+    CHECK(std::abs(broken_at.at(partner) - lambda) <= 1e-9 * std::max(std::abs(lambda), 1e-12));
+  }
+  // Determinism: the same events, bit for bit, on a second run.
+  const RunResult again = run_scene(scene, {});
+  REQUIRE(again.events.size() == result.events.size());
+  for (std::size_t k = 0; k < result.events.size(); ++k) {
+    CHECK(again.events[k].bond == result.events[k].bond);
+    CHECK(again.events[k].lambda == result.events[k].lambda);
+  }
+}
