@@ -15,6 +15,7 @@ packages=(
   libcli11-dev               # command line
   libpng-dev                 # pictures
   mpi-default-dev            # SUNDIALS' CMake config asks for MPI
+  python3                    # the CLI tests validate JSON output with it
 )
 
 missing=()
