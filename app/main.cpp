@@ -1,4 +1,4 @@
-// latfrac: the command line. run, check, analyze, render (docs/cli.md).
+// latfrac: the command line. run, check, study, analyze, render (docs/cli.md).
 //
 // Exit status: 0 success, 2 bad input (problem file or option), 1 anything else.
 #include <CLI/CLI.hpp>
@@ -10,11 +10,13 @@
 #include <limits>
 
 #include "latfrac/error.h"
+#include "latfrac/fault_analysis.h"
 #include "latfrac/problem_file.h"
 #include "latfrac/render.h"
 #include "latfrac/result_file.h"
 #include "latfrac/run.h"
 #include "latfrac/size_estimate.h"
+#include "latfrac/study.h"
 #include "latfrac/xdmf.h"
 
 namespace fs = std::filesystem;
@@ -85,24 +87,60 @@ int check_command(const std::string& problem, const std::vector<std::string>& se
   return 0;
 }
 
+int study_command(const std::string& problem, const std::vector<std::string>& sets,
+                  const std::string& increments, std::string out_dir, bool relaxation, bool quiet,
+                  bool force, const std::string& command_line) {
+  // 1. Check the increments before anything runs; read the scene; refuse what cannot fit.
+  StudyOptions options;
+  options.increments = parse_increments(increments);
+  const Scene scene = read_problem_file(problem, sets);
+  check_memory(scene, force);
+  if (!quiet) {
+    std::cout << describe(scene) << "\nstudy: the event-driven reference, then fixed-step at ds =";
+    for (double ds : options.increments) std::cout << " " << increment_text(ds);
+    std::cout << (relaxation ? " (each also with relaxation)" : "") << "\n";
+  }
+
+  // 2. The reference (event-driven), then a fixed-step run per increment; a line per run.
+  options.relaxation = relaxation;
+  options.command_line = command_line;
+  options.run_progress = !quiet;
+  if (!quiet) options.on_row = [](const StudyRow& row) { std::cerr << progress_line(row) << "\n"; };
+  const StudyResult study = run_study(scene, options);
+
+  // 3. study.csv, study.md and study.png, each complete or absent.
+  if (out_dir.empty()) out_dir = (fs::path("out") / scene.name / "study").string();
+  write_study(study, out_dir);
+  if (!quiet) {
+    for (const std::string& line : study_interpretation(study))
+      if (!line.empty()) std::cout << line << "\n";
+    std::cout << "wrote " << (fs::path(out_dir) / "study.csv").string()
+              << ", study.md, study.png\n";
+  }
+  return 0;
+}
+
 int analyze_command(const std::string& path, bool json) {
+  // 1. Read the result; 2. analyse the faults of its last snapshot; 3. print.
   const RunResult result = read_result_file(path);
+  if (result.snapshots.empty()) {
+    std::cout << summary_text(result) << "fault analysis: the result holds no snapshot\n";
+    return 0;
+  }
+  const FaultReport report = analyze_faults(result, result.snapshots.size() - 1);
   if (json) {
     const RunSummary& s = result.summary;
     std::printf(
         "{\"name\": \"%s\", \"dim\": %d, \"nodes\": %zu, \"bonds\": %zu, \"breaks\": %lld, "
         "\"final_lambda\": %.17g, \"wall_seconds\": %.6g, \"solves\": %lld, \"factorizations\": %lld, "
-        "\"factor_updates\": %lld, \"snapshots\": %zu, \"faults\": null, "
-        "\"fault_analysis\": \"not available in this version\"}\n",
+        "\"factor_updates\": %lld, \"snapshots\": %zu, \"faults\": %s}\n",
         result.scene.name.c_str(), result.scene.dim, result.node_count(), result.bond_count(),
         static_cast<long long>(s.breaks), s.final_lambda, s.wall_seconds, static_cast<long long>(s.solves),
         static_cast<long long>(s.factorizations), static_cast<long long>(s.factor_updates),
-        result.snapshots.size());
+        result.snapshots.size(), to_json(report).c_str());
     return 0;
   }
-  std::cout << summary_text(result)
-            << "fault analysis: not available in this version of latfrac (it needs fracture, which "
-               "comes later)\n";
+  std::cout << summary_text(result) << "\n" << to_text(report);
   return 0;
 }
 
@@ -143,6 +181,18 @@ int main(int argc, char** argv) {
   check->add_option("problem", problem, "the problem file (TOML)")->required()->check(CLI::ExistingFile);
   check->add_option("--set", sets, "override a key: --set lattice.spacing=500");
 
+  std::string increments;
+  bool relaxation = false;
+  auto* study = app.add_subcommand("study", "convergence study: fixed-step runs against the event-driven reference");
+  study->add_option("problem", problem, "the problem file (TOML)")->required()->check(CLI::ExistingFile);
+  study->add_option("--increments", increments, "fixed-step increments ds, comma-separated: 1e-2,3e-3,1e-3")
+      ->required();
+  study->add_option("-o,--output", out_dir, "output directory (default out/<name>/study/)");
+  study->add_option("--set", sets, "override a key: --set lattice.spacing=500");
+  study->add_flag("--relaxation", relaxation, "also run each increment with solver.method = relaxation");
+  study->add_flag("--quiet", quiet, "print nothing but errors");
+  study->add_flag("--force", force, "run even when the memory estimate exceeds the available memory");
+
   auto* analyze = app.add_subcommand("analyze", "summarise a result file");
   analyze->add_option("result", result_path, "a result file (.h5)")->required()->check(CLI::ExistingFile);
   analyze->add_flag("--json", json, "machine-readable output");
@@ -167,6 +217,8 @@ int main(int argc, char** argv) {
     }
     if (*run) return run_command(problem, sets, out_dir, quiet, force, joined(argc, argv));
     if (*check) return check_command(problem, sets);
+    if (*study)
+      return study_command(problem, sets, increments, out_dir, relaxation, quiet, force, joined(argc, argv));
     if (*analyze) return analyze_command(result_path, json);
     if (*render) return render_command(result_path, lambda, png, width, exaggeration);
     std::cout << app.help();

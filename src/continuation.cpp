@@ -19,10 +19,30 @@ FractureContinuation::FractureContinuation(Model& model, const Scene& scene, Equ
       solver_(solver),
       progress_(progress),
       evaluator_(*scene.strength, model),
-      fragments_(model) {}
+      fragments_(model) {
+  if (scene.solver.method == EquilibriumMethod::relaxation) relaxation_.emplace(model, scene.solver);
+}
+
+// The classical baseline: no factor and no affine path; every equilibrium is relaxed from
+// the last one (whose prescribed dofs simply take their values at the new lambda).
+void FractureContinuation::relax(double lambda) {
+  // The last state is the starting guess (after a part was held, mapped onto the new
+  // unknowns by hold_unsupported).
+  if (state_.size() != model_.dofs.free_count) state_ = Vector::Zero(model_.dofs.free_count);
+  const RelaxationReport report = relaxation_->solve(model_, lambda, state_);
+  state_lambda_ = lambda;
+  state_current_ = true;
+  ++relaxation_solves_;
+  relaxation_sweeps_ += report.sweeps;
+  if (!report.converged) ++relaxation_unconverged_;
+}
 
 Vector FractureContinuation::displacement(double lambda) {
   if (state_current_ && lambda == state_lambda_) return model_.full_displacement(state_, lambda);
+  if (relaxation_) {
+    relax(lambda);
+    return model_.full_displacement(state_, lambda);
+  }
   return model_.full_displacement(current_path(lambda).at(lambda), lambda);
 }
 
@@ -35,6 +55,11 @@ const AffinePath& FractureContinuation::current_path(double lambda) {
 }
 
 void FractureContinuation::resolve(double lambda) {
+  if (relaxation_) {
+    relax(lambda);
+    path_current_ = false;
+    return;
+  }
   state_ = solver_.checked_solve(lambda);
   state_lambda_ = lambda;
   state_current_ = true;
@@ -51,6 +76,12 @@ bool FractureContinuation::hold_unsupported(const std::vector<FragmentDetector::
   }
   solver_.supports_changed();
   state_current_ = path_current_ = false;  // the unknowns changed
+  if (relaxation_) {
+    state_.resize(model_.dofs.free_count);
+    for (std::int64_t dof = 0; dof < model_.dofs.dof_count(); ++dof) {
+      if (model_.dofs.free_index[dof] >= 0) state_[model_.dofs.free_index[dof]] = u[dof];
+    }
+  }
   return true;
 }
 
@@ -183,6 +214,10 @@ void FractureContinuation::run_fixed_step(RunResult& result) {
 // crossing the bond that reached f = 1 breaks (explicitly: roundoff may leave its f a
 // hair below 1), then the cascade runs at that lambda exactly as in the fixed-step method.
 void FractureContinuation::run_event_driven(RunResult& result) {
+  if (relaxation_) {
+    throw InputError(scene_.source_path + ": solver.method = \"relaxation\" works with the fixed-step "
+                     "method only (stepping.method = \"fixed\"): events need the exact affine path");
+  }
   start(result);
   const double total = scene_.loading.total;
   const std::vector<double> snapshots = snapshot_lambdas();

@@ -136,6 +136,8 @@ void write_summary(hid_t file, const RunSummary& summary) {
   hdf5::write_attribute(file, group, "factorizations", summary.factorizations);
   hdf5::write_attribute(file, group, "factor_updates", summary.factor_updates);
   hdf5::write_attribute(file, group, "contact_cycles", summary.contact_cycles);
+  hdf5::write_attribute(file, group, "relaxation_sweeps", summary.relaxation_sweeps);
+  hdf5::write_attribute(file, group, "relaxation_unconverged", summary.relaxation_unconverged);
   hdf5::write_attribute(file, group, "final_lambda", summary.final_lambda);
   hdf5::write_attribute(file, group, "wall_seconds", summary.wall_seconds);
 }
@@ -232,10 +234,29 @@ RunSummary read_summary(hid_t file) {
   summary.solves = hdf5::read_attribute<std::int64_t>(file, group, "solves");
   summary.factorizations = hdf5::read_attribute<std::int64_t>(file, group, "factorizations");
   summary.factor_updates = hdf5::read_attribute<std::int64_t>(file, group, "factor_updates");
-  summary.contact_cycles = hdf5::read_attribute<std::int64_t>(file, group, "contact_cycles");
+  // Counters added after the first result files: absent means zero.
+  auto optional_count = [&](const char* name) -> std::int64_t {
+    return H5Aexists_by_name(file, group.c_str(), name, H5P_DEFAULT) > 0
+               ? hdf5::read_attribute<std::int64_t>(file, group, name)
+               : 0;
+  };
+  summary.contact_cycles = optional_count("contact_cycles");
+  summary.relaxation_sweeps = optional_count("relaxation_sweeps");
+  summary.relaxation_unconverged = optional_count("relaxation_unconverged");
   summary.final_lambda = hdf5::read_attribute<double>(file, group, "final_lambda");
   summary.wall_seconds = hdf5::read_attribute<double>(file, group, "wall_seconds");
   return summary;
+}
+
+// Files written before fragments were recorded have no /fragments: none then.
+std::vector<FragmentEvent> read_fragments(hid_t file) {
+  std::vector<FragmentEvent> fragments;
+  if (!hdf5::exists(file, "/fragments/lambda")) return fragments;
+  const Shape shape{row_count(file, "/fragments/lambda", 0)};
+  const auto lambda = hdf5::read_dataset<double>(file, "/fragments/lambda", shape);
+  const auto nodes = hdf5::read_dataset<std::int64_t>(file, "/fragments/nodes", shape);
+  for (hsize_t i = 0; i < shape[0]; ++i) fragments.push_back({lambda[i], nodes[i]});
+  return fragments;
 }
 
 RunResult read_contents(hid_t file) {
@@ -248,10 +269,7 @@ RunResult read_contents(hid_t file) {
   result.bonds = hdf5::read_dataset<std::int64_t>(file, "/lattice/bonds", {bonds, 2});
   result.bond_kind = hdf5::read_dataset<std::int8_t>(file, "/lattice/bond_kind", {bonds});
   result.events = read_events(file);
-  const Shape fragments{row_count(file, "/fragments/lambda", 0)};
-  const auto fragment_lambda = hdf5::read_dataset<double>(file, "/fragments/lambda", fragments);
-  const auto fragment_nodes = hdf5::read_dataset<std::int64_t>(file, "/fragments/nodes", fragments);
-  for (hsize_t i = 0; i < fragments[0]; ++i) result.fragments.push_back({fragment_lambda[i], fragment_nodes[i]});
+  result.fragments = read_fragments(file);
   result.snapshots = read_snapshots(file, nodes, bonds);
   result.summary = read_summary(file);
   return result;

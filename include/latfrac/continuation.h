@@ -10,11 +10,13 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 
 #include "latfrac/equilibrium.h"
 #include "latfrac/fracture.h"
 #include "latfrac/fragments.h"
 #include "latfrac/progress.h"
+#include "latfrac/relaxation.h"
 #include "latfrac/run_result.h"
 
 namespace latfrac {
@@ -31,6 +33,11 @@ class FractureContinuation {
   void run_event_driven(RunResult& result);
 
   std::int64_t breaks() const { return breaks_; }
+  // With solver.method = "relaxation": relaxation solves, their sweeps, and those that
+  // stopped at the sweep cap before reaching the tolerance.
+  std::int64_t relaxation_solves() const { return relaxation_solves_; }
+  std::int64_t relaxation_sweeps() const { return relaxation_sweeps_; }
+  std::int64_t relaxation_unconverged() const { return relaxation_unconverged_; }
   std::int64_t chattering_resolved() const { return chattering_resolved_; }
 
  private:
@@ -70,6 +77,10 @@ class FractureContinuation {
   double state_lambda_ = 0;
   bool state_current_ = false;
   std::int64_t breaks_ = 0, chattering_resolved_ = 0;
+  std::optional<RelaxationSolver> relaxation_;  // set when the scene asks for relaxation
+  std::int64_t relaxation_solves_ = 0, relaxation_sweeps_ = 0, relaxation_unconverged_ = 0;
+  // Relaxes the state to equilibrium at lambda, starting from the current state.
+  void relax(double lambda);
   std::vector<FragmentEvent> fragment_log_;
   std::int64_t next_cascade_ = 1;
 };

@@ -60,6 +60,8 @@ struct RunSummary {
   std::int64_t factorizations = 0;
   std::int64_t factor_updates = 0;
   std::int64_t contact_cycles = 0;  // contact iterations that cycled and were resolved
+  std::int64_t relaxation_sweeps = 0;       // solver.method = "relaxation": sweeps in all
+  std::int64_t relaxation_unconverged = 0;  // relaxation solves stopped by the sweep cap
 };
 
 struct RunResult {

@@ -1,0 +1,356 @@
+// Fault analysis: synthetic broken-bond sets of known geometry, against their angles and counts.
+#include "latfrac/fault_analysis.h"
+
+#include <algorithm>
+#include <array>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <random>
+
+#include "latfrac/error.h"
+
+using namespace latfrac;
+
+namespace {
+
+constexpr double kDegree = M_PI / 180.0;
+using Xyz = std::array<double, 3>;
+
+// A result with the given nodes, bonds between every pair at a distance in `lengths` (within
+// 1e-9), and one snapshot with every bond intact and nothing displaced.
+RunResult lattice_result(int dim, const std::vector<Xyz>& nodes,
+                         const std::vector<double>& lengths) {
+  RunResult result;
+  result.scene.dim = dim;
+  result.scene.spacing = 1.0;
+  for (const Xyz& p : nodes) result.positions.insert(result.positions.end(), p.begin(), p.end());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    for (std::size_t j = i + 1; j < nodes.size(); ++j) {
+      const double distance = std::hypot(nodes[j][0] - nodes[i][0], nodes[j][1] - nodes[i][1],
+                                         nodes[j][2] - nodes[i][2]);
+      for (std::size_t kind = 0; kind < lengths.size(); ++kind) {
+        if (std::abs(distance - lengths[kind]) > 1e-9) continue;
+        result.bonds.push_back(static_cast<std::int64_t>(i));
+        result.bonds.push_back(static_cast<std::int64_t>(j));
+        result.bond_kind.push_back(static_cast<std::int8_t>(kind));
+      }
+    }
+  }
+  Snapshot snapshot;
+  snapshot.lambda = 0.04;
+  snapshot.displacement.assign(result.positions.size(), 0.0);
+  snapshot.bond_intact.assign(result.bond_count(), 1);
+  result.snapshots.push_back(snapshot);
+  return result;
+}
+
+// The 2-D triangular lattice at spacing 1: rows along x, odd rows shifted by half a spacing.
+RunResult triangular(int columns = 60, int rows = 40) {
+  std::vector<Xyz> nodes;
+  for (int j = 0; j < rows; ++j) {
+    for (int i = 0; i < columns; ++i) {
+      nodes.push_back({i + (j % 2 ? 0.5 : 0.0), 0.0, j * std::sqrt(3.0) / 2});
+    }
+  }
+  return lattice_result(2, nodes, {1.0});
+}
+
+// A simple cubic block at spacing 1, with edge and face-diagonal bonds.
+RunResult cubic(int size = 16) {
+  std::vector<Xyz> nodes;
+  for (int k = 0; k < size; ++k) {
+    for (int j = 0; j < size; ++j) {
+      for (int i = 0; i < size; ++i) nodes.push_back({double(i), double(j), double(k)});
+    }
+  }
+  return lattice_result(3, nodes, {1.0, std::sqrt(2.0)});
+}
+
+double top_z(const RunResult& result) {
+  double top = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < result.node_count(); ++i)
+    top = std::max(top, result.positions[3 * i + 2]);
+  return top;
+}
+
+Xyz midpoint(const RunResult& result, std::size_t bond) {
+  Xyz m;
+  for (int c = 0; c < 3; ++c) {
+    m[c] = 0.5 * (result.positions[3 * result.bonds[2 * bond] + c] +
+                  result.positions[3 * result.bonds[2 * bond + 1] + c]);
+  }
+  return m;
+}
+
+// Breaks (in the last snapshot) every intact bond whose midpoint passes `select`; returns them.
+std::vector<std::int64_t> break_where(RunResult& result,
+                                      const std::function<bool(const Xyz&)>& select) {
+  std::vector<std::int64_t> broken;
+  auto& intact = result.snapshots.back().bond_intact;
+  for (std::size_t b = 0; b < result.bond_count(); ++b) {
+    if (intact[b] && select(midpoint(result, b))) {
+      intact[b] = 0;
+      broken.push_back(static_cast<std::int64_t>(b));
+    }
+  }
+  return broken;
+}
+
+// Distance in the x-z plane from p to the line through (x0, z0) rising at `angle_deg` towards +x.
+double distance_to_line(const Xyz& p, double x0, double z0, double angle_deg) {
+  const double c = std::cos(angle_deg * kDegree), s = std::sin(angle_deg * kDegree);
+  return std::abs((p[0] - x0) * s - (p[2] - z0) * c);
+}
+
+void add_events(RunResult& result, const std::vector<std::int64_t>& bonds, std::int8_t mode) {
+  for (const std::int64_t b : bonds) result.events.push_back({0.01, b, 1.0, mode, 0});
+}
+
+// Structural checks that need nothing outside the test: balanced brackets outside strings,
+// no NaN or infinity.
+void check_json_shape(const std::string& json) {
+  int depth = 0;
+  bool in_string = false;
+  for (const char c : json) {
+    if (c == '"') in_string = !in_string;
+    if (in_string) continue;
+    if (c == '{' || c == '[') ++depth;
+    if (c == '}' || c == ']') --depth;
+    REQUIRE(depth >= 0);
+  }
+  CHECK(depth == 0);
+  CHECK_FALSE(in_string);
+  CHECK(json.front() == '{');
+  CHECK(json.back() == '}');
+  std::string lower = json;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  CHECK(lower.find("nan") == std::string::npos);
+  CHECK(lower.find("inf") == std::string::npos);
+}
+
+// Parses the text with Python's json module when python3 is installed.
+void check_json_with_python(const std::string& json) {
+  if (std::system("python3 -c pass > /dev/null 2>&1") != 0) {
+    WARN("python3 not found: JSON checked for shape only");
+    return;
+  }
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("latfrac-fault-json-" + std::to_string(std::random_device{}()) + ".json");
+  std::ofstream(path) << json;
+  const std::string command =
+      "python3 -c 'import json, sys; json.load(open(sys.argv[1]))' '" + path.string() + "'";
+  CHECK(std::system(command.c_str()) == 0);
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+
+TEST_CASE("A straight band of broken bonds gives its dip", "[analysis]") {
+  // angle: the line rises towards +x at this angle; a line rising towards +x descends
+  // towards -x.
+  const auto [angle, expected_direction] = GENERATE(
+      table<double, int>({{30.0, -1}, {60.0, -1}, {75.0, -1}, {90.0, 0}, {120.0, 1}, {105.0, 1}}));
+  CAPTURE(angle);
+  RunResult result = triangular();
+  const auto marked = break_where(
+      result, [&](const Xyz& m) { return distance_to_line(m, 30.0, 17.0, angle) < 0.5; });
+  const FaultReport report = analyze_faults(result);
+
+  const double dip = angle <= 90 ? angle : 180 - angle;
+  CHECK(report.broken_bonds == static_cast<std::int64_t>(marked.size()));
+  REQUIRE(report.faults.size() == 1);
+  const Fault& fault = report.faults[0];
+  CHECK(fault.bonds == static_cast<std::int64_t>(marked.size()));
+  CHECK(std::abs(fault.dip_deg - dip) < 1.0);
+  CHECK(fault.alpha_deg == Approx(90.0 - fault.dip_deg));
+  CHECK(fault.dip_direction == expected_direction);
+  CHECK_FALSE(fault.diffuse);
+  CHECK(fault.fit_rms < 0.5);
+  CHECK(report.lambda == 0.04);
+  CHECK(report.grabens.empty());
+  if (angle == 90.0) CHECK(std::abs(fault.extent - top_z(result)) < 1.0);
+}
+
+TEST_CASE("A plane of broken bonds in 3-D gives its dip", "[analysis]") {
+  // The plane's upward normal tilts by the dip towards the azimuth (from +x towards +y) it
+  // descends to.
+  const auto [dip, azimuth, expected_direction] =
+      GENERATE(table<double, double, int>({{50.0, 0.0, 1}, {35.0, 160.0, -1}, {70.0, -20.0, 1}}));
+  CAPTURE(dip, azimuth);
+  const Xyz normal{std::sin(dip * kDegree) * std::cos(azimuth * kDegree),
+                   std::sin(dip * kDegree) * std::sin(azimuth * kDegree), std::cos(dip * kDegree)};
+  RunResult result = cubic();
+  const auto marked = break_where(result, [&](const Xyz& m) {
+    return std::abs((m[0] - 7.3) * normal[0] + (m[1] - 7.6) * normal[1] +
+                    (m[2] - 7.4) * normal[2]) < 0.5;
+  });
+  const FaultReport report = analyze_faults(result);
+
+  REQUIRE(report.faults.size() == 1);
+  const Fault& fault = report.faults[0];
+  CHECK(report.dim == 3);
+  CHECK(fault.bonds == static_cast<std::int64_t>(marked.size()));
+  CHECK(std::abs(fault.dip_deg - dip) < 1.0);
+  CHECK(fault.alpha_deg == Approx(90.0 - fault.dip_deg));
+  CHECK(fault.dip_direction == expected_direction);
+  CHECK_FALSE(fault.diffuse);
+  CHECK(fault.extent > 15.0 * 15.0);  // the plane crosses the whole 15 x 15 m block
+}
+
+TEST_CASE("Two faults dipping towards each other bound a subsided graben", "[analysis]") {
+  RunResult result = triangular();
+  const double top = top_z(result);
+  const double dip = 60.0;
+  // The traces reach the surface at x = 20 and x = 40 and meet 10 tan(60) m below it.
+  auto left_x = [&](double z) { return 20.0 + (top - z) / std::tan(dip * kDegree); };
+  auto right_x = [&](double z) { return 40.0 - (top - z) / std::tan(dip * kDegree); };
+  const double apex_depth = 10.0 * std::tan(dip * kDegree);
+  const double apex_z = top - apex_depth;
+  const auto marked = break_where(result, [&](const Xyz& m) {
+    if (m[2] < apex_z + 4.0) return false;  // keep the two faults apart near the apex
+    return distance_to_line(m, 20.0, top, -dip) < 0.5 || distance_to_line(m, 40.0, top, dip) < 0.5;
+  });
+  auto& displacement = result.snapshots.back().displacement;
+  for (std::size_t i = 0; i < result.node_count(); ++i) {
+    const double x = result.positions[3 * i], z = result.positions[3 * i + 2];
+    if (z > apex_z && x > left_x(z) && x < right_x(z)) displacement[3 * i + 2] = -10.0;
+  }
+  const FaultReport report = analyze_faults(result);
+
+  REQUIRE(report.faults.size() == 2);
+  for (const Fault& fault : report.faults) CHECK(std::abs(fault.dip_deg - dip) < 1.0);
+  CHECK(report.faults[0].bonds + report.faults[1].bonds ==
+        static_cast<std::int64_t>(marked.size()));
+  REQUIRE(report.grabens.size() == 1);
+  const Graben& graben = report.grabens[0];
+  const Fault& left = report.faults[graben.left_fault];
+  const Fault& right = report.faults[graben.right_fault];
+  CHECK(left.dip_direction == 1);
+  CHECK(right.dip_direction == -1);
+  CHECK(left.centroid[0] < right.centroid[0]);
+  CHECK(graben.left_surface_x == Approx(20.0).margin(0.5));
+  CHECK(graben.right_surface_x == Approx(40.0).margin(0.5));
+  CHECK(graben.apex_depth == Approx(apex_depth).margin(1.5));
+  CHECK(graben.surface_subsidence == Approx(10.0).epsilon(0.01));
+  check_json_shape(to_json(report));
+  CHECK(to_text(report).find("Grabens") != std::string::npos);
+}
+
+TEST_CASE("Two faults dipping away from each other are no graben", "[analysis]") {
+  RunResult result = triangular();
+  const double top = top_z(result);
+  break_where(result, [&](const Xyz& m) {
+    return distance_to_line(m, 20.0, top, 60.0) < 0.5 ||
+           distance_to_line(m, 40.0, top, -60.0) < 0.5;
+  });
+  const FaultReport report = analyze_faults(result);
+  REQUIRE(report.faults.size() == 2);
+  CHECK(report.grabens.empty());
+}
+
+TEST_CASE("Nothing broken: no faults, no graben, valid JSON", "[analysis]") {
+  const RunResult result = triangular(20, 10);
+  const FaultReport report = analyze_faults(result);
+  CHECK(report.broken_bonds == 0);
+  CHECK(report.faults.empty());
+  CHECK(report.grabens.empty());
+  const std::string json = to_json(report);
+  check_json_shape(json);
+  check_json_with_python(json);
+  CHECK(json.find("\"faults\": []") != std::string::npos);
+  CHECK_FALSE(to_text(report).empty());
+}
+
+TEST_CASE("Snapshots: the last by default, an index out of range or none is an input error",
+          "[analysis]") {
+  RunResult result = triangular(30, 20);
+  result.snapshots.push_back(result.snapshots.back());
+  result.snapshots.back().lambda = 0.05;
+  const auto marked = break_where(result, [](const Xyz& m) { return std::abs(m[0] - 15.2) < 0.5; });
+  CHECK(analyze_faults(result).faults.size() == 1);
+  CHECK(analyze_faults(result).lambda == 0.05);
+  CHECK(analyze_faults(result, 1).broken_bonds == static_cast<std::int64_t>(marked.size()));
+  CHECK(analyze_faults(result, 0).broken_bonds == 0);
+  CHECK_THROWS_AS(analyze_faults(result, 2), InputError);
+  result.snapshots.clear();
+  CHECK_THROWS_AS(analyze_faults(result), InputError);
+}
+
+TEST_CASE("Break modes give the shares; pre-cuts are left out", "[analysis]") {
+  RunResult result = triangular();
+  const auto fault_bonds =
+      break_where(result, [](const Xyz& m) { return std::abs(m[0] - 40.2) < 0.5; });
+  const auto precut_bonds =
+      break_where(result, [](const Xyz& m) { return std::abs(m[0] - 10.2) < 0.5 && m[2] > 20.0; });
+  REQUIRE(precut_bonds.size() >= 5);
+  const std::size_t tensile = fault_bonds.size() / 3;
+  add_events(result, {fault_bonds.begin(), fault_bonds.begin() + tensile}, 0);
+  add_events(result, {fault_bonds.begin() + tensile, fault_bonds.end()}, 1);
+  add_events(result, precut_bonds, 2);
+  const FaultReport report = analyze_faults(result);
+
+  CHECK(report.broken_bonds == static_cast<std::int64_t>(fault_bonds.size()));
+  REQUIRE(report.faults.size() == 1);
+  const Fault& fault = report.faults[0];
+  CHECK(fault.tensile_share == Approx(double(tensile) / fault_bonds.size()));
+  CHECK(fault.shear_share == Approx(double(fault_bonds.size() - tensile) / fault_bonds.size()));
+  CHECK(fault.centroid[0] == Approx(40.2).margin(0.5));
+}
+
+TEST_CASE("A shattered region is flagged diffuse, a band beside it is not", "[analysis]") {
+  RunResult result = triangular();
+  break_where(result, [](const Xyz& m) { return std::hypot(m[0] - 20.0, m[2] - 17.0) < 7.0; });
+  break_where(result, [](const Xyz& m) { return std::abs(m[0] - 45.2) < 0.5; });
+  const FaultReport report = analyze_faults(result);
+  REQUIRE(report.faults.size() == 2);
+  const Fault& cloud = report.faults[0].centroid[0] < 30 ? report.faults[0] : report.faults[1];
+  const Fault& band = report.faults[0].centroid[0] < 30 ? report.faults[1] : report.faults[0];
+  CHECK(cloud.diffuse);
+  CHECK(cloud.variance_ratio > 0.5);
+  CHECK_FALSE(band.diffuse);
+  CHECK(band.dip_deg == Approx(90.0).margin(1.0));
+  CHECK(to_text(report).find("diffuse") != std::string::npos);
+}
+
+TEST_CASE("Small clusters are dropped; the threshold is an option", "[analysis]") {
+  RunResult result = triangular(30, 20);
+  const auto marked =
+      break_where(result, [](const Xyz& m) { return std::hypot(m[0] - 10.0, m[2] - 8.0) < 0.55; });
+  REQUIRE(marked.size() >= 2);
+  REQUIRE(static_cast<std::int64_t>(marked.size()) < FaultOptions{}.min_bonds);
+  CHECK(analyze_faults(result).faults.empty());
+  CHECK(analyze_faults(result).broken_bonds == static_cast<std::int64_t>(marked.size()));
+  FaultOptions options;
+  options.min_bonds = 1;
+  CHECK(analyze_faults(result, kLastSnapshot, options).faults.size() == 1);
+  options.link_distance_spacings = 0;
+  CHECK_THROWS_AS(analyze_faults(result, kLastSnapshot, options), InputError);
+}
+
+TEST_CASE("JSON writes non-finite numbers as null and parses", "[analysis]") {
+  FaultReport report;
+  report.lambda = 0.04;
+  report.broken_bonds = 12;
+  Fault fault;
+  fault.bonds = 12;
+  fault.dip_deg = std::numeric_limits<double>::quiet_NaN();
+  fault.extent = std::numeric_limits<double>::infinity();
+  fault.diffuse = true;
+  report.faults = {fault, fault};
+  Graben graben;
+  graben.right_fault = 1;
+  graben.surface_subsidence = std::numeric_limits<double>::quiet_NaN();
+  report.grabens = {graben};
+  const std::string json = to_json(report);
+  check_json_shape(json);
+  check_json_with_python(json);
+  CHECK(json.find("\"dip_deg\": null") != std::string::npos);
+  CHECK(json.find("\"surface_subsidence\": null") != std::string::npos);
+  CHECK(json.find("\"diffuse\": true") != std::string::npos);
+}
