@@ -8,6 +8,7 @@
 
 #include "latfrac/error.h"
 #include "latfrac/events.h"
+#include "latfrac/nonlinear_path.h"
 #include "latfrac/snapshot.h"
 
 namespace latfrac {
@@ -21,6 +22,15 @@ FractureContinuation::FractureContinuation(Model& model, const Scene& scene, Equ
       evaluator_(*scene.strength, model),
       fragments_(model) {
   if (scene.solver.method == EquilibriumMethod::relaxation) relaxation_.emplace(model, scene.solver);
+  integrated_path_ = !model.law->is_linear();
+}
+
+void FractureContinuation::newton(double lambda) {
+  if (state_.size() != model_.dofs.free_count) state_ = Vector::Zero(model_.dofs.free_count);
+  solver_.solve(lambda, state_);
+  state_lambda_ = lambda;
+  state_current_ = true;
+  path_current_ = false;
 }
 
 // The classical baseline: no factor and no affine path; every equilibrium is relaxed from
@@ -39,11 +49,19 @@ void FractureContinuation::relax(double lambda) {
 
 Vector FractureContinuation::displacement(double lambda) {
   if (state_current_ && lambda == state_lambda_) return model_.full_displacement(state_, lambda);
-  if (relaxation_) {
-    relax(lambda);
+  if (relaxation_ || !model_.law->is_linear()) {
+    relaxation_ ? relax(lambda) : newton(lambda);
     return model_.full_displacement(state_, lambda);
   }
   return model_.full_displacement(current_path(lambda).at(lambda), lambda);
+}
+
+Vector FractureContinuation::free_state(double lambda) {
+  if (!(state_current_ && lambda == state_lambda_) && model_.law->is_linear() && !relaxation_) {
+    return current_path(lambda).at(lambda);
+  }
+  displacement(lambda);  // brings state_ to lambda
+  return state_;
 }
 
 const AffinePath& FractureContinuation::current_path(double lambda) {
@@ -55,8 +73,8 @@ const AffinePath& FractureContinuation::current_path(double lambda) {
 }
 
 void FractureContinuation::resolve(double lambda) {
-  if (relaxation_) {
-    relax(lambda);
+  if (relaxation_ || !model_.law->is_linear()) {
+    relaxation_ ? relax(lambda) : newton(lambda);
     path_current_ = false;
     return;
   }
@@ -218,6 +236,7 @@ void FractureContinuation::run_event_driven(RunResult& result) {
     throw InputError(scene_.source_path + ": solver.method = \"relaxation\" works with the fixed-step "
                      "method only (stepping.method = \"fixed\"): events need the exact affine path");
   }
+  if (integrated_path_) return run_integrated_events(result);
   start(result);
   const double total = scene_.loading.total;
   const std::vector<double> snapshots = snapshot_lambdas();
@@ -267,6 +286,48 @@ void FractureContinuation::run_event_driven(RunResult& result) {
     progress_.update(lambda, breaks_);
   }
   record_snapshots_until(total, true);
+  result.fragments = fragment_log_;
+}
+
+// The general route (model.md section 5): from an equilibrium, CVODE follows the path to
+// the next snapshot or the end and stops where a bond's f reaches 1; KINSOL puts the state
+// on the path there. The bonds tied at that f (within 1e-9: the root is located to the
+// solver's tolerance, not to rounding) break as a group, then the cascade runs. Contact
+// switches are settled at breaks and snapshots, not located as events on this route.
+void FractureContinuation::run_integrated_events(RunResult& result) {
+  start(result);
+  NonlinearPath path(model_, solver_, evaluator_, scene_.solver);
+  const double total = scene_.loading.total;
+  const std::vector<double> snapshots = snapshot_lambdas();
+  std::size_t next_snapshot = 0;
+  double lambda = 0;
+  if (model_.contact) settle_contacts(lambda);
+  cascade(lambda, result);
+  while (true) {
+    while (next_snapshot < snapshots.size() && std::abs(snapshots[next_snapshot]) <= std::abs(lambda)) {
+      result.snapshots.push_back(make_snapshot(model_, displacement(lambda), lambda, &evaluator_));
+      ++next_snapshot;
+    }
+    if (lambda == total) break;
+    const double target = next_snapshot < snapshots.size() ? snapshots[next_snapshot] : total;
+    Vector state = free_state(lambda);
+    const PathEvent event = path.advance(lambda, target, state);
+    lambda = event.bond >= 0 ? event.lambda : target;
+    state_ = state;
+    state_lambda_ = lambda;
+    state_current_ = true;
+    path_current_ = false;
+    if (event.bond >= 0) {
+      std::vector<CriticalBond> group = evaluator_.critical_group(model_, displacement(lambda), 1 - 1e-9);
+      if (group.empty()) {
+        const CriticalBond leader = evaluator_.most_critical(model_, displacement(lambda));
+        group.push_back(leader);
+      }
+      break_group(group, lambda, next_cascade_++, result);
+      cascade(lambda, result, next_cascade_ - 1);
+    }
+    progress_.update(lambda, breaks_);
+  }
   result.fragments = fragment_log_;
 }
 

@@ -28,11 +28,12 @@ FailureIndex FailureEvaluator::bond_index(const Model& model, const Vector& disp
     return drucker_prager_index(stress, parameters_.dp_alpha,
                                 parameters_.dp_k_per_cohesion * model.bond_tau0[bond]);
   }
-  const Vec3& n0 = model.lattice.bond_direction[bond];
-  const Vec3 du = model.bond_displacement(displacement, bond);
-  const double dn = n0.dot(du);
-  const double shear = (du - dn * n0).norm();
+  // The bond law's own normal and shear displacement (the current direction under large
+  // kinematics).
   const double length = model.lattice.bond_length[bond];
+  const BondDeformation d = model.law->deformation({model.lattice.bond_direction[bond], length},
+                                                   model.bond_displacement(displacement, bond));
+  const double dn = d.normal, shear = d.shear.norm();
   return failure_index(parameters_.criterion, model.bond_young[bond] * dn / length,
                        model.bond_shear_modulus[bond] * shear / length, model.bond_sigma0[bond],
                        model.bond_tau0[bond]);
@@ -59,7 +60,9 @@ void FailureEvaluator::evaluate(const Model& model, const Vector& displacement, 
 double FailureEvaluator::rank(const Model& model, const Vector& displacement, std::int64_t b,
                               const std::vector<double>& node_stress) const {
   const Criterion criterion = parameters_.criterion;
-  if (criterion == Criterion::drucker_prager) return bond_index(model, displacement, b, node_stress).value;
+  if (criterion == Criterion::drucker_prager || !model.law->is_linear()) {
+    return bond_index(model, displacement, b, node_stress).value;
+  }
   const Vec3& n0 = model.lattice.bond_direction[b];
   const Vec3 du = model.bond_displacement(displacement, b);
   const double dn = n0.dot(du);
@@ -72,7 +75,8 @@ double FailureEvaluator::rank(const Model& model, const Vector& displacement, st
 
 double FailureEvaluator::rank_tolerance() const {
   // The squared ratio of tensile_or_shear doubles the relative spread; a margin of two
-  // more keeps every tied bond among the candidates (the exact f decides).
+  // more keeps every tied bond among the candidates (the exact f decides). The exact f
+  // is the rank itself for Drucker-Prager and for a nonlinear law.
   return 4 * tie_tolerance;
 }
 

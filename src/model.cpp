@@ -152,7 +152,11 @@ Model build_model(const Scene& scene) {
           -material.density * scene.gravity->g * lattice.node_volume;
     }
   }
-  model.law = std::make_unique<SmallKinematics>();
+  if (scene.large_kinematics) {
+    model.law = std::make_unique<LargeKinematics>();
+  } else {
+    model.law = std::make_unique<SmallKinematics>();
+  }
   return model;
 }
 

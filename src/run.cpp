@@ -39,7 +39,6 @@ Provenance provenance_of(const Scene& scene, const RunOptions& options) {
 
 std::vector<std::string> unsupported_effects(const Scene& scene) {
   std::vector<std::string> missing;
-  if (scene.large_kinematics) missing.push_back("[large_kinematics]");
   if (scene.solver.method == EquilibriumMethod::relaxation && !scene.strength) {
     missing.push_back("solver.method = \"relaxation\" on an elastic scene (it is the fracture baseline)");
   }
@@ -79,11 +78,15 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   } else {
     // A linear elastic scene follows an affine path: one factorization and one
     // two-column solve give every lambda; KINSOL then confirms equilibrium at each snapshot.
-    const AffinePath path = solver.affine_path();
+    // A nonlinear one (large kinematics) is solved by KINSOL snapshot after snapshot, each
+    // from the one before.
+    const bool linear = model.law->is_linear();
+    const AffinePath path = linear ? solver.affine_path() : AffinePath{};
     std::vector<double> lambdas = scene.output.snapshots;
     if (lambdas.empty()) lambdas.push_back(scene.loading.total);
+    Vector free_displacement = Vector::Zero(model.dofs.free_count);
     for (double lambda : lambdas) {
-      Vector free_displacement = path.at(lambda);
+      if (linear) free_displacement = path.at(lambda);
       solver.solve(lambda, free_displacement);
       result.snapshots.push_back(
           make_snapshot(model, model.full_displacement(free_displacement, lambda), lambda, nullptr));

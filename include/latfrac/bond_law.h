@@ -7,6 +7,26 @@
 // which is linear in du, so the tangent is kn n0 n0' + ks (I - n0 n0').
 // Every residual and every stiffness matrix in latfrac comes from one BondLaw object, so
 // the large-kinematics law (current direction n) replaces it without touching assembly.
+//
+// Large kinematics (model.md section 2, docs/large-kinematics.md) keeps the same
+// relative displacement du = u_j - u_i = (x_j - x_i) - d0 but measures it along the
+// current bond direction: with d = d0 + du (d0 = L0 n0), r = |d|, n = d / r,
+//   dn = n . du,  ds = du - dn n,  t = kn dn n + ks ds = ks du + (kn - ks) dn n.
+// Its tangent, with P = I - n n' and g = d(dn)/d(du) = n + P du / r, is
+//   T = ks I + (kn - ks) (n g' + (dn / r) P).
+// Since P du = -P d0, the term n g' = n n' - n (P d0)' / r is not symmetric once the bond
+// has rotated (P d0 != 0): the law has no stored energy. jacobian() returns T itself;
+// tangent(), which the stiffness assembly uses, returns its symmetric part (T + T') / 2.
+// The assembly stores the upper triangle of a symmetric matrix (CHOLMOD's stype = 1), so
+// what CHOLMOD factorizes is then exactly the symmetric part of the Jacobian of R,
+// independent of the node numbering. Mirroring the upper triangle of T instead gives a
+// matrix whose bond blocks do not vanish on a rigid translation and is indefinite in 3-D at a
+// few per cent strain. With (T + T') / 2, KINSOL's Newton (inexact now, its error of the
+// order of the bond rotations) converges in 6-9 iterations from rest at 5-30 % extension
+// on the tests' scenes (docs/large-kinematics.md).
+// Neither law is invariant under rigid rotation: a rotation by theta gives
+// |ds| = L0 |sin theta| in both, and dn = L0 (cos theta - 1) (small) or L0 (1 - cos theta)
+// (large).
 #pragma once
 
 #include <Eigen/Core>
@@ -19,7 +39,7 @@ using Mat3 = Eigen::Matrix3d;
 
 // Normal and shear displacement of a bond, m.
 struct BondDeformation {
-  double normal = 0;     // dn, tension positive
+  double normal = 0;          // dn, tension positive
   Vec3 shear = Vec3::Zero();  // ds
 };
 
@@ -37,9 +57,15 @@ class BondLaw {
                                       const Vec3& relative_displacement) const = 0;
   virtual Vec3 tension(const BondReference& reference, const Vec3& relative_displacement, double kn,
                        double ks) const = 0;
-  // d tension / d relative_displacement.
+  // The symmetric stiffness block the assembly factorizes: d tension / d relative_displacement
+  // when that is symmetric, its symmetric part otherwise.
   virtual Mat3 tangent(const BondReference& reference, const Vec3& relative_displacement, double kn,
                        double ks) const = 0;
+  // d tension / d relative_displacement exactly (nonsymmetric for large kinematics).
+  virtual Mat3 jacobian(const BondReference& reference, const Vec3& relative_displacement,
+                        double kn, double ks) const {
+    return tangent(reference, relative_displacement, kn, ks);
+  }
   // True when tension is linear in the displacement (equilibrium paths are affine).
   virtual bool is_linear() const = 0;
 };
@@ -53,6 +79,21 @@ class SmallKinematics final : public BondLaw {
   Mat3 tangent(const BondReference& reference, const Vec3& relative_displacement, double kn,
                double ks) const override;
   bool is_linear() const override { return true; }
+};
+
+// jacobian() is the exact T, tangent() its symmetric part (see above). A bond collapsed
+// to zero length (r = 0) has no current direction: it falls back to n0.
+class LargeKinematics final : public BondLaw {
+ public:
+  BondDeformation deformation(const BondReference& reference,
+                              const Vec3& relative_displacement) const override;
+  Vec3 tension(const BondReference& reference, const Vec3& relative_displacement, double kn,
+               double ks) const override;
+  Mat3 tangent(const BondReference& reference, const Vec3& relative_displacement, double kn,
+               double ks) const override;
+  Mat3 jacobian(const BondReference& reference, const Vec3& relative_displacement, double kn,
+                double ks) const override;
+  bool is_linear() const override { return false; }
 };
 
 }  // namespace latfrac

@@ -32,6 +32,10 @@ class FractureContinuation {
   // (closed-form crossings on the affine path; docs/model.md, section 8).
   void run_event_driven(RunResult& result);
 
+  // Follow paths with CVODE and KINSOL (docs/large-kinematics.md) even when the bond law
+  // is linear and the closed-form route would serve: for comparing the two routes.
+  void use_integrated_path(bool on) { integrated_path_ = on; }
+
   std::int64_t breaks() const { return breaks_; }
   // With solver.method = "relaxation": relaxation solves, their sweeps, and those that
   // stopped at the sweep cap before reaching the tolerance.
@@ -44,6 +48,8 @@ class FractureContinuation {
   // The full displacement at lambda: from the state of the current cascade when lambda
   // is its lambda, from the affine path otherwise.
   Vector displacement(double lambda);
+  // The free displacement at lambda, whichever way the state is computed.
+  Vector free_state(double lambda);
   // The affine path of the current stiffness (solved, residual checked, when stale).
   const AffinePath& current_path(double lambda);
   // Re-equilibrates at lambda after the stiffness changed (one right-hand side).
@@ -81,6 +87,11 @@ class FractureContinuation {
   std::int64_t relaxation_solves_ = 0, relaxation_sweeps_ = 0, relaxation_unconverged_ = 0;
   // Relaxes the state to equilibrium at lambda, starting from the current state.
   void relax(double lambda);
+  // Newton (KINSOL) to equilibrium at lambda from the current state: the nonlinear law.
+  void newton(double lambda);
+  // The event-driven loop on integrated (CVODE) paths.
+  void run_integrated_events(RunResult& result);
+  bool integrated_path_ = false;
   std::vector<FragmentEvent> fragment_log_;
   std::int64_t next_cascade_ = 1;
 };
