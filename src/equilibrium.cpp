@@ -13,32 +13,16 @@
 #include <string>
 
 #include "latfrac/error.h"
+#include "sundials_checks.h"
 
 namespace latfrac {
 namespace {
 
-void check_flag(int flag, const char* call) {
-  if (flag >= 0) return;
-  throw Error(std::string(call) + " failed with flag " + std::to_string(flag));
-}
+using sundials::as_vector;
+using sundials::check_flag;
+using sundials::check_pointer;
 
-template <typename T>
-T* check_pointer(T* pointer, const char* call) {
-  if (!pointer) throw Error(std::string(call) + " failed (returned NULL)");
-  return pointer;
-}
-
-// KINGetReturnFlagName returns a malloc'ed string.
-std::string flag_name(int flag) {
-  char* name = KINGetReturnFlagName(flag);
-  std::string text = name ? name : "unknown";
-  free(name);
-  return text;
-}
-
-Eigen::Map<Vector> as_vector(N_Vector v) {
-  return {N_VGetArrayPointer(v), static_cast<Eigen::Index>(N_VGetLength(v))};
-}
+std::string flag_name(int flag) { return sundials::flag_name(KINGetReturnFlagName(flag)); }
 
 }  // namespace
 

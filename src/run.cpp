@@ -15,14 +15,15 @@
 #include "latfrac/snapshot.h"
 
 namespace latfrac {
-namespace {
 
-std::string iso_now() {
+std::string utc_timestamp() {
   const std::time_t now = std::time(nullptr);
   char text[32];
   std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
   return text;
 }
+
+namespace {
 
 Provenance provenance_of(const Scene& scene, const RunOptions& options) {
   Provenance p;
@@ -30,7 +31,7 @@ Provenance provenance_of(const Scene& scene, const RunOptions& options) {
   p.git_commit = LATFRAC_GIT_COMMIT;
   p.command_line = options.command_line;
   p.problem = scene.source_text;
-  p.created = iso_now();
+  p.created = utc_timestamp();
   p.seed = scene.heterogeneity ? scene.heterogeneity->seed : 0;
   return p;
 }

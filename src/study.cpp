@@ -22,13 +22,6 @@
 namespace latfrac {
 namespace {
 
-std::string iso_now() {
-  const std::time_t now = std::time(nullptr);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-  return text;
-}
-
 std::string trimmed(const std::string& text) {
   const auto first = text.find_first_not_of(" \t");
   if (first == std::string::npos) return "";
@@ -211,7 +204,7 @@ double broken_set_difference(const std::vector<std::int64_t>& run,
 }
 
 StudyResult run_study(const Scene& scene, const StudyOptions& options) {
-  StudyResult study{scene.name, options.command_line, iso_now(), {}};
+  StudyResult study{scene.name, options.command_line, utc_timestamp(), {}};
   RunOptions run_options{options.command_line, options.run_progress};
   auto report = [&](const StudyRow& row) {
     study.rows.push_back(row);

@@ -23,6 +23,9 @@ std::vector<std::string> unsupported_effects(const Scene& scene);
 // scene with unsupported effects, Error when a solve fails.
 RunResult run_scene(const Scene& scene, const RunOptions& options);
 
+// The current time in ISO 8601 (UTC), as provenance records it.
+std::string utc_timestamp();
+
 // The summary printed at the end of a run and by `latfrac analyze`.
 std::string summary_text(const RunResult& result);
 
