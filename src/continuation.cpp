@@ -275,11 +275,8 @@ void FractureContinuation::run_event_driven(RunResult& result) {
       std::vector<double> index;
       std::vector<BreakMode> modes;
       evaluator_.evaluate(model_, displacement(lambda), index, modes);
-      std::vector<CriticalBond> group;
+      std::vector<CriticalBond> group;  // crossing.tied is in bond-id order
       for (std::int64_t bond : crossing.tied) group.push_back({bond, index[bond], modes[bond]});
-      std::sort(group.begin(), group.end(), [](const CriticalBond& p, const CriticalBond& q) {
-        return p.index != q.index ? p.index > q.index : p.bond < q.bond;
-      });
       break_group(group, lambda, cascade_id, result);
       cascade(lambda, result, cascade_id);
     }

@@ -123,7 +123,9 @@ struct EquilibriumSolver::Kinsol {
 
 EquilibriumSolver::EquilibriumSolver(Model& model, const SolverOptions& options)
     : model_(model), options_(options), stiffness_(model), factor_(options.ordering) {
-  kinsol_ = std::make_unique<Kinsol>(this, static_cast<sunindextype>(model.dofs.free_count));
+  if (model.dofs.free_count > 0) {
+    kinsol_ = std::make_unique<Kinsol>(this, static_cast<sunindextype>(model.dofs.free_count));
+  }
   find_boundary_bonds();
 }
 
@@ -153,6 +155,10 @@ double EquilibriumSolver::load_scale(double lambda) {
 }
 
 void EquilibriumSolver::refactorize(const Vector& free_displacement, double lambda) {
+  if (model_.dofs.free_count == 0) {
+    factor_current_ = true;
+    return;
+  }
   stiffness_.assemble(model_, model_.full_displacement(free_displacement, lambda));
   factor_.factorize(stiffness_);
   ++counters_.factorizations;
@@ -260,10 +266,14 @@ Vector EquilibriumSolver::checked_solve(double lambda) {
   return {};
 }
 
+// With every dof prescribed (everything held) there is nothing to analyse or solve.
 void EquilibriumSolver::supports_changed() {
   stiffness_ = StiffnessMatrix(model_);
-  factor_.analyze(stiffness_);
-  kinsol_ = std::make_unique<Kinsol>(this, static_cast<sunindextype>(model_.dofs.free_count));
+  kinsol_.reset();
+  if (model_.dofs.free_count > 0) {
+    factor_.analyze(stiffness_);
+    kinsol_ = std::make_unique<Kinsol>(this, static_cast<sunindextype>(model_.dofs.free_count));
+  }
   factor_current_ = false;
   find_boundary_bonds();
 }

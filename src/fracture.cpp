@@ -109,9 +109,9 @@ std::vector<CriticalBond> FailureEvaluator::critical_group(const Model& model, c
   const double largest =
       std::max_element(group.begin(), group.end(), [](auto& p, auto& q) { return p.index < q.index; })->index;
   std::erase_if(group, [&](const CriticalBond& c) { return c.index < largest * (1 - tie_tolerance); });
-  std::sort(group.begin(), group.end(), [](const CriticalBond& p, const CriticalBond& q) {
-    return p.index != q.index ? p.index > q.index : p.bond < q.bond;
-  });
+  // Their failure indices are equal within the tolerance: the order is the bond id, so
+  // that rounding cannot reorder a group from one build to the next.
+  std::sort(group.begin(), group.end(), [](const CriticalBond& p, const CriticalBond& q) { return p.bond < q.bond; });
   if (largest < threshold) group.clear();
   return group;
 }

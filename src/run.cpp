@@ -11,6 +11,7 @@
 #include "latfrac/continuation.h"
 #include "latfrac/equilibrium.h"
 #include "latfrac/error.h"
+#include "latfrac/fragments.h"
 #include "latfrac/progress.h"
 #include "latfrac/snapshot.h"
 
@@ -40,6 +41,10 @@ Provenance provenance_of(const Scene& scene, const RunOptions& options) {
 
 std::vector<std::string> unsupported_effects(const Scene& scene) {
   std::vector<std::string> missing;
+  if (scene.contact && !scene.strength) {
+    missing.push_back("[contact] on an elastic scene (contacts are settled by the fracture run: add a "
+                      "[strength] section, with a strength that cannot be reached if nothing should break)");
+  }
   if (scene.solver.method == EquilibriumMethod::relaxation && !scene.strength) {
     missing.push_back("solver.method = \"relaxation\" on an elastic scene (it is the fracture baseline)");
   }
@@ -59,6 +64,9 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
 
   Model model = build_model(scene);
   record_lattice(model, result);
+  // Elastic scenes hold parts cut loose by pre-cuts before the solver is built; fracture
+  // runs do it at their start (continuation.cpp).
+  if (!scene.strength) result.fragments = prepare_supports(model, scene.source_path);
   EquilibriumSolver solver(model, scene.solver);
   ProgressLine progress(options.progress);
 

@@ -30,8 +30,8 @@ class FailureEvaluator {
                 std::vector<BreakMode>& mode) const;
   // The intact bond with the largest f; ties go to the lowest bond id.
   CriticalBond most_critical(const Model& model, const Vector& displacement) const;
-  // The bonds tied for the largest f (within tie_tolerance relative), largest f first,
-  // then lowest id; empty when that f is below `threshold`.
+  // The bonds tied for the largest f (within tie_tolerance relative), in bond-id order;
+  // empty when that f is below `threshold`.
   std::vector<CriticalBond> critical_group(const Model& model, const Vector& displacement,
                                            double threshold) const;
   // Failure indices equal to this relative tolerance count as equal (docs/robustness.md).

@@ -7,9 +7,11 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "latfrac/model.h"
+#include "latfrac/run_result.h"
 
 namespace latfrac {
 
@@ -37,6 +39,13 @@ class FragmentDetector {
   // Neighbours of each node with the bond that joins them.
   std::vector<std::vector<std::pair<std::int64_t, std::int64_t>>> neighbours_;
 };
+
+// The start of a run: with contact, the springs of contact-capable bonds start closed
+// (the faces of a pre-cut touch at rest); then every part without support along some
+// axis is held there at zero displacement. Returns one fragment event per held part.
+// Throws InputError when the face conditions leave the whole body free along an axis.
+// The caller builds (or rebuilds) its solver afterwards.
+std::vector<FragmentEvent> prepare_supports(Model& model, const std::string& source_path);
 
 // Holds a loose part along the components it lacks, at its current displacement: those
 // free dofs become prescribed (base = current value, rate 0). Along the other axes the
