@@ -1,9 +1,9 @@
 // latfrac: the command line. run, check, study, analyze, render (docs/cli.md).
 //
 // Exit status: 0 success, 2 bad input (problem file or option), 1 anything else.
-#include <CLI/CLI.hpp>
 #include <latfrac_version.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -37,8 +37,8 @@ void check_memory(const Scene& scene, bool force) {
   if (!refusal.empty()) throw InputError(refusal);
 }
 
-int run_command(const std::string& problem, const std::vector<std::string>& sets, std::string out_dir,
-                bool quiet, bool force, const std::string& command_line) {
+int run_command(const std::string& problem, const std::vector<std::string>& sets,
+                std::string out_dir, bool quiet, bool force, const std::string& command_line) {
   // 1. Read and validate the scene; refuse what cannot fit in memory.
   const Scene scene = read_problem_file(problem, sets);
   check_memory(scene, force);
@@ -132,12 +132,13 @@ int analyze_command(const std::string& path, bool json) {
     const RunSummary& s = result.summary;
     std::printf(
         "{\"name\": \"%s\", \"dim\": %d, \"nodes\": %zu, \"bonds\": %zu, \"breaks\": %lld, "
-        "\"final_lambda\": %.17g, \"wall_seconds\": %.6g, \"solves\": %lld, \"factorizations\": %lld, "
+        "\"final_lambda\": %.17g, \"wall_seconds\": %.6g, \"solves\": %lld, \"factorizations\": "
+        "%lld, "
         "\"factor_updates\": %lld, \"snapshots\": %zu, \"faults\": %s}\n",
         result.scene.name.c_str(), result.scene.dim, result.node_count(), result.bond_count(),
-        static_cast<long long>(s.breaks), s.final_lambda, s.wall_seconds, static_cast<long long>(s.solves),
-        static_cast<long long>(s.factorizations), static_cast<long long>(s.factor_updates),
-        result.snapshots.size(), to_json(report).c_str());
+        static_cast<long long>(s.breaks), s.final_lambda, s.wall_seconds,
+        static_cast<long long>(s.solves), static_cast<long long>(s.factorizations),
+        static_cast<long long>(s.factor_updates), result.snapshots.size(), to_json(report).c_str());
     return 0;
   }
   std::cout << summary_text(result) << "\n" << to_text(report);
@@ -171,38 +172,55 @@ int main(int argc, char** argv) {
   int width = 1600;
 
   auto* run = app.add_subcommand("run", "run a problem file and write its results");
-  run->add_option("problem", problem, "the problem file (TOML)")->required()->check(CLI::ExistingFile);
+  run->add_option("problem", problem, "the problem file (TOML)")
+      ->required()
+      ->check(CLI::ExistingFile);
   run->add_option("-o,--output", out_dir, "output directory (default out/<name>/)");
   run->add_option("--set", sets, "override a key: --set lattice.spacing=500");
   run->add_flag("--quiet", quiet, "print nothing but errors");
   run->add_flag("--force", force, "run even when the memory estimate exceeds the available memory");
 
-  auto* check = app.add_subcommand("check", "validate a problem file and estimate its size; write nothing");
-  check->add_option("problem", problem, "the problem file (TOML)")->required()->check(CLI::ExistingFile);
+  auto* check =
+      app.add_subcommand("check", "validate a problem file and estimate its size; write nothing");
+  check->add_option("problem", problem, "the problem file (TOML)")
+      ->required()
+      ->check(CLI::ExistingFile);
   check->add_option("--set", sets, "override a key: --set lattice.spacing=500");
 
   std::string increments;
   bool relaxation = false;
-  auto* study = app.add_subcommand("study", "convergence study: fixed-step runs against the event-driven reference");
-  study->add_option("problem", problem, "the problem file (TOML)")->required()->check(CLI::ExistingFile);
-  study->add_option("--increments", increments, "fixed-step increments ds, comma-separated: 1e-2,3e-3,1e-3")
+  auto* study = app.add_subcommand(
+      "study", "convergence study: fixed-step runs against the event-driven reference");
+  study->add_option("problem", problem, "the problem file (TOML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  study
+      ->add_option("--increments", increments,
+                   "fixed-step increments ds, comma-separated: 1e-2,3e-3,1e-3")
       ->required();
   study->add_option("-o,--output", out_dir, "output directory (default out/<name>/study/)");
   study->add_option("--set", sets, "override a key: --set lattice.spacing=500");
-  study->add_flag("--relaxation", relaxation, "also run each increment with solver.method = relaxation");
+  study->add_flag("--relaxation", relaxation,
+                  "also run each increment with solver.method = relaxation");
   study->add_flag("--quiet", quiet, "print nothing but errors");
-  study->add_flag("--force", force, "run even when the memory estimate exceeds the available memory");
+  study->add_flag("--force", force,
+                  "run even when the memory estimate exceeds the available memory");
 
   auto* analyze = app.add_subcommand("analyze", "summarise a result file");
-  analyze->add_option("result", result_path, "a result file (.h5)")->required()->check(CLI::ExistingFile);
+  analyze->add_option("result", result_path, "a result file (.h5)")
+      ->required()
+      ->check(CLI::ExistingFile);
   analyze->add_flag("--json", json, "machine-readable output");
 
   auto* render = app.add_subcommand("render", "draw a result's cross-section as a PNG");
-  render->add_option("result", result_path, "a result file (.h5)")->required()->check(CLI::ExistingFile);
+  render->add_option("result", result_path, "a result file (.h5)")
+      ->required()
+      ->check(CLI::ExistingFile);
   render->add_option("--lambda", lambda, "the snapshot nearest this lambda (default: the last)");
   render->add_option("-o,--output", png, "the PNG file to write")->required();
   render->add_option("--width", width, "picture width in pixels")->check(CLI::Range(200, 20000));
-  render->add_option("--exaggeration", exaggeration, "displacement magnification (default: the scene's)");
+  render->add_option("--exaggeration", exaggeration,
+                     "displacement magnification (default: the scene's)");
 
   try {
     app.parse(argc, argv);
@@ -218,7 +236,8 @@ int main(int argc, char** argv) {
     if (*run) return run_command(problem, sets, out_dir, quiet, force, joined(argc, argv));
     if (*check) return check_command(problem, sets);
     if (*study)
-      return study_command(problem, sets, increments, out_dir, relaxation, quiet, force, joined(argc, argv));
+      return study_command(problem, sets, increments, out_dir, relaxation, quiet, force,
+                           joined(argc, argv));
     if (*analyze) return analyze_command(result_path, json);
     if (*render) return render_command(result_path, lambda, png, width, exaggeration);
     std::cout << app.help();

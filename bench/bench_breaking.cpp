@@ -69,7 +69,8 @@ void run_case(int dim, long nodes, Ordering ordering) {
   start = Clock::now();
   const int evaluations = 5;
   CriticalBond critical;
-  for (int k = 0; k < evaluations; ++k) critical = evaluator.most_critical(model, model.full_displacement(path.at(lambda), lambda));
+  for (int k = 0; k < evaluations; ++k)
+    critical = evaluator.most_critical(model, model.full_displacement(path.at(lambda), lambda));
   const double criterion = seconds_since(start) / evaluations;
 
   // Breaks of random bonds that leave the body supported: downdate, re-solve and check,
@@ -103,23 +104,27 @@ void run_case(int dim, long nodes, Ordering ordering) {
   resolve /= breaks;
   evaluate /= breaks;
   const double per_break = update + resolve + evaluate;
-  std::printf("| %d-D | %8ld | %9.3f | %9.4f | %9.4f | %9.4f | %9.4f | %6.1f %% | %9.4f | %6.1f %% |\n", dim,
-              static_cast<long>(model.lattice.node_count()), refactorization, update, resolve, evaluate,
-              per_break, 100 * per_break / refactorization, criterion, 100 * criterion / resolve);
+  std::printf(
+      "| %d-D | %8ld | %9.3f | %9.4f | %9.4f | %9.4f | %9.4f | %6.1f %% | %9.4f | %6.1f %% |\n",
+      dim, static_cast<long>(model.lattice.node_count()), refactorization, update, resolve,
+      evaluate, per_break, 100 * per_break / refactorization, criterion, 100 * criterion / resolve);
   std::fflush(stdout);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::printf("| dim | nodes | refactorize s | update s | re-solve + check s | criterion s | per break s "
-              "| break / refactorize | all-bond criterion s | criterion / re-solve |\n");
+  std::printf(
+      "| dim | nodes | refactorize s | update s | re-solve + check s | criterion s | per break s "
+      "| break / refactorize | all-bond criterion s | criterion / re-solve |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   std::fflush(stdout);
   std::vector<std::pair<int, long>> cases = {{2, 100000}, {3, 50000}};
   if (argc >= 3) cases = {{std::stoi(argv[1]), std::stol(argv[2])}};
   const std::string name = argc == 4 ? argv[3] : "metis";
-  const Ordering ordering = name == "nesdis" ? Ordering::nesdis : name == "amd" ? Ordering::amd : Ordering::metis;
+  const Ordering ordering = name == "nesdis" ? Ordering::nesdis
+                            : name == "amd"  ? Ordering::amd
+                                             : Ordering::metis;
   for (const auto& [dim, nodes] : cases) {
     const pid_t child = fork();
     if (child == 0) {
@@ -134,7 +139,8 @@ int main(int argc, char** argv) {
     int status = 0;
     waitpid(child, &status, 0);
   }
-  std::printf("\nper break = factor downdate + re-solve at lambda with its residual check "
-              "+ criterion of every bond; refactorize = assembly + numeric factorization + solve.\n");
+  std::printf(
+      "\nper break = factor downdate + re-solve at lambda with its residual check "
+      "+ criterion of every bond; refactorize = assembly + numeric factorization + solve.\n");
   return 0;
 }

@@ -85,18 +85,21 @@ void run_case(int dim, long nodes) {
 
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
-  std::printf("| %d-D | %8ld | %8ld | %6.2f | %8.3f | %7.3f | %9.3f | %7.3f | %10.2f | %7.0f | %6.3f | %2ld | %+7.1f %% |\n",
-              dim, static_cast<long>(model.lattice.node_count()), static_cast<long>(n), build, assemble,
-              analyze, factorize, solve, factor_entries / 1e6, usage.ru_maxrss / 1024.0, kinsol,
-              report.newton_iterations, 100 * (kinsol - bare) / bare);
+  std::printf(
+      "| %d-D | %8ld | %8ld | %6.2f | %8.3f | %7.3f | %9.3f | %7.3f | %10.2f | %7.0f | %6.3f | "
+      "%2ld | %+7.1f %% |\n",
+      dim, static_cast<long>(model.lattice.node_count()), static_cast<long>(n), build, assemble,
+      analyze, factorize, solve, factor_entries / 1e6, usage.ru_maxrss / 1024.0, kinsol,
+      report.newton_iterations, 100 * (kinsol - bare) / bare);
   std::fflush(stdout);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::printf("| dim | nodes | free DOFs | build s | assemble s | analyze s | factorize s | solve(2) s "
-              "| nnz(L) 1e6 | peak MB | KINSOL s | Newton its | KINSOL vs bare |\n");
+  std::printf(
+      "| dim | nodes | free DOFs | build s | assemble s | analyze s | factorize s | solve(2) s "
+      "| nnz(L) 1e6 | peak MB | KINSOL s | Newton its | KINSOL vs bare |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::fflush(stdout);
   std::vector<std::pair<int, long>> cases = {{2, 100000}, {3, 10000}, {3, 50000}};
@@ -116,6 +119,7 @@ int main(int argc, char** argv) {
     int status = 0;
     waitpid(child, &status, 0);
   }
-  std::printf("\nKINSOL vs bare: KINSOL's Newton solve against assemble + analyze + factorize + solve.\n");
+  std::printf(
+      "\nKINSOL vs bare: KINSOL's Newton solve against assemble + analyze + factorize + solve.\n");
   return 0;
 }

@@ -76,7 +76,8 @@ VoigtTensor lattice_tensor(int dim, const Material& material, double spacing, bo
   const Vec3 centre = lattice.extent / 2;
   std::int64_t middle = 0;
   for (std::int64_t n = 1; n < lattice.node_count(); ++n) {
-    if ((lattice.positions[n] - centre).norm() < (lattice.positions[middle] - centre).norm()) middle = n;
+    if ((lattice.positions[n] - centre).norm() < (lattice.positions[middle] - centre).norm())
+      middle = n;
   }
   const SpringConstants k = spring_constants(dim, material, spacing);
   double c[3][3][3][3] = {};

@@ -1,9 +1,8 @@
 // CHOLMOD-backed sparse Cholesky: analyze once, factorize, solve many right-hand sides.
 #include "latfrac/cholesky.h"
 
-#include <suitesparse/cholmod.h>
-
 #include <dlfcn.h>
+#include <suitesparse/cholmod.h>
 
 #include <algorithm>
 #include <cmath>
@@ -28,14 +27,22 @@ namespace {
 
 std::string status_text(int status) {
   switch (status) {
-    case CHOLMOD_OK: return "ok";
-    case CHOLMOD_NOT_INSTALLED: return "method not installed";
-    case CHOLMOD_OUT_OF_MEMORY: return "out of memory";
-    case CHOLMOD_TOO_LARGE: return "integer overflow (problem too large)";
-    case CHOLMOD_INVALID: return "invalid input";
-    case CHOLMOD_GPU_PROBLEM: return "GPU problem";
-    case CHOLMOD_NOT_POSDEF: return "matrix not positive definite";
-    case CHOLMOD_DSMALL: return "tiny diagonal entry";
+    case CHOLMOD_OK:
+      return "ok";
+    case CHOLMOD_NOT_INSTALLED:
+      return "method not installed";
+    case CHOLMOD_OUT_OF_MEMORY:
+      return "out of memory";
+    case CHOLMOD_TOO_LARGE:
+      return "integer overflow (problem too large)";
+    case CHOLMOD_INVALID:
+      return "invalid input";
+    case CHOLMOD_GPU_PROBLEM:
+      return "GPU problem";
+    case CHOLMOD_NOT_POSDEF:
+      return "matrix not positive definite";
+    case CHOLMOD_DSMALL:
+      return "tiny diagonal entry";
   }
   return "status " + std::to_string(status);
 }
@@ -54,7 +61,8 @@ void limit_blas_threads() {
   std::call_once(once, [] {
     if (std::getenv("OPENBLAS_NUM_THREADS")) return;
     using SetThreads = void (*)(int);
-    if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set(1);
+    if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
+      set(1);
   });
 }
 
@@ -86,9 +94,15 @@ CholeskyFactor::CholeskyFactor(Ordering ordering) : state_(std::make_unique<Stat
   c.nmethods = 1;
   c.supernodal = CHOLMOD_SUPERNODAL;
   switch (ordering) {
-    case Ordering::metis: c.method[0].ordering = CHOLMOD_METIS; break;
-    case Ordering::nesdis: c.method[0].ordering = CHOLMOD_NESDIS; break;
-    case Ordering::amd: c.method[0].ordering = CHOLMOD_AMD; break;
+    case Ordering::metis:
+      c.method[0].ordering = CHOLMOD_METIS;
+      break;
+    case Ordering::nesdis:
+      c.method[0].ordering = CHOLMOD_NESDIS;
+      break;
+    case Ordering::amd:
+      c.method[0].ordering = CHOLMOD_AMD;
+      break;
   }
   c.postorder = 1;
 }
@@ -187,8 +201,8 @@ void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
   }
   std::size_t entries = 0;
   for (const Column& column : columns) entries += column.size();
-  cholmod_sparse* update_matrix =
-      cholmod_l_allocate_sparse(n, columns.size(), entries, /*sorted=*/1, /*packed=*/1, 0, CHOLMOD_REAL, &c);
+  cholmod_sparse* update_matrix = cholmod_l_allocate_sparse(
+      n, columns.size(), entries, /*sorted=*/1, /*packed=*/1, 0, CHOLMOD_REAL, &c);
   check(c, update_matrix != nullptr, "cholmod_l_allocate_sparse");
   auto* p = static_cast<std::int64_t*>(update_matrix->p);
   auto* i = static_cast<std::int64_t*>(update_matrix->i);
@@ -197,7 +211,8 @@ void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
   for (std::size_t j = 0; j < columns.size(); ++j) {
     p[j] = k;
     Column sorted;
-    for (const auto& [row, value] : columns[j]) sorted.push_back({inverse_permutation_[row], value});
+    for (const auto& [row, value] : columns[j])
+      sorted.push_back({inverse_permutation_[row], value});
     std::sort(sorted.begin(), sorted.end());
     for (const auto& [row, value] : sorted) {
       i[k] = row;
@@ -210,8 +225,9 @@ void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
   cholmod_l_free_sparse(&update_matrix, &c);
   if (status == CHOLMOD_NOT_POSDEF) {
     factorized_ = false;
-    throw Error("cholmod_l_updown: the updated stiffness matrix is not positive definite: part of "
-                "the body can move without resistance");
+    throw Error(
+        "cholmod_l_updown: the updated stiffness matrix is not positive definite: part of "
+        "the body can move without resistance");
   }
   check(c, ok, "cholmod_l_updown");
 }

@@ -1,8 +1,8 @@
 // The fixed-step fracture continuation: cascades, contacts and fragments.
 #include "latfrac/continuation.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <string>
 
@@ -13,15 +13,16 @@
 
 namespace latfrac {
 
-FractureContinuation::FractureContinuation(Model& model, const Scene& scene, EquilibriumSolver& solver,
-                                           ProgressLine& progress)
+FractureContinuation::FractureContinuation(Model& model, const Scene& scene,
+                                           EquilibriumSolver& solver, ProgressLine& progress)
     : model_(model),
       scene_(scene),
       solver_(solver),
       progress_(progress),
       evaluator_(*scene.strength, model),
       fragments_(model) {
-  if (scene.solver.method == EquilibriumMethod::relaxation) relaxation_.emplace(model, scene.solver);
+  if (scene.solver.method == EquilibriumMethod::relaxation)
+    relaxation_.emplace(model, scene.solver);
   integrated_path_ = !model.law->is_linear();
 }
 
@@ -132,7 +133,8 @@ void FractureContinuation::settle_contacts(double lambda) {
       solver_.set_contact(bond, close);
       if (!close) opened.push_back(bond);
     }
-    for (std::int64_t bond : opened) hold_unsupported(fragments_.unsupported_after_break(model_, bond), lambda);
+    for (std::int64_t bond : opened)
+      hold_unsupported(fragments_.unsupported_after_break(model_, bond), lambda);
     resolve(lambda);
     if (cycling) return;
   }
@@ -142,11 +144,12 @@ void FractureContinuation::break_bond(std::int64_t bond, const FailureIndex& fai
                                       std::int64_t cascade_id, RunResult& result) {
   const Vector u = displacement(lambda);
   model_.intact[bond] = 0;
-  result.events.push_back({lambda, bond, failure.value, static_cast<std::int8_t>(failure.mode), cascade_id});
+  result.events.push_back(
+      {lambda, bond, failure.value, static_cast<std::int8_t>(failure.mode), cascade_id});
   ++breaks_;
   // A bond that breaks in compression becomes a closed contact at once.
-  const bool closes = model_.contact_capable(bond) &&
-                      model_.lattice.bond_direction[bond].dot(model_.bond_displacement(u, bond)) < 0;
+  const bool closes = model_.contact_capable(bond) && model_.lattice.bond_direction[bond].dot(
+                                                          model_.bond_displacement(u, bond)) < 0;
   model_.contact_active[bond] = closes;
   if (!hold_unsupported(fragments_.unsupported_after_break(model_, bond), lambda)) {
     solver_.remove_bond(bond);
@@ -163,13 +166,15 @@ void FractureContinuation::break_bond(std::int64_t bond, const FailureIndex& fai
 void FractureContinuation::break_group(const std::vector<CriticalBond>& group, double lambda,
                                        std::int64_t cascade_id, RunResult& result) {
   for (const CriticalBond& member : group) {
-    if (model_.intact[member.bond]) break_bond(member.bond, {member.index, member.mode}, lambda, cascade_id, result);
+    if (model_.intact[member.bond])
+      break_bond(member.bond, {member.index, member.mode}, lambda, cascade_id, result);
   }
 }
 
 void FractureContinuation::cascade(double lambda, RunResult& result, std::int64_t cascade_id) {
   for (;;) {
-    const std::vector<CriticalBond> group = evaluator_.critical_group(model_, displacement(lambda), 1.0);
+    const std::vector<CriticalBond> group =
+        evaluator_.critical_group(model_, displacement(lambda), 1.0);
     if (group.empty()) return;
     if (cascade_id < 0) cascade_id = next_cascade_++;
     break_group(group, lambda, cascade_id, result);
@@ -179,7 +184,8 @@ void FractureContinuation::cascade(double lambda, RunResult& result, std::int64_
 void FractureContinuation::start(RunResult& result) {
   // Pre-cut bonds are broken from the start: events of mode 2 at lambda 0, cascade 0.
   for (std::int64_t b = 0; b < model_.lattice.bond_count(); ++b) {
-    if (model_.precut[b]) result.events.push_back({0.0, b, 0.0, static_cast<std::int8_t>(BreakMode::precut), 0});
+    if (model_.precut[b])
+      result.events.push_back({0.0, b, 0.0, static_cast<std::int8_t>(BreakMode::precut), 0});
   }
   // The faces of a pre-cut touch at rest: with contact, their springs start closed and
   // the first settling opens those in tension.
@@ -189,7 +195,8 @@ void FractureContinuation::start(RunResult& result) {
   const auto loose = fragments_.unsupported_parts(model_);
   for (const auto& part : loose) {
     if (static_cast<std::int64_t>(part.nodes.size()) == model_.lattice.node_count()) {
-      throw InputError(scene_.source_path + ": [boundary]: the face conditions leave the body free to "
+      throw InputError(scene_.source_path +
+                       ": [boundary]: the face conditions leave the body free to "
                        "move along an axis; hold at least one face along every axis");
     }
   }
@@ -210,7 +217,8 @@ std::vector<double> FractureContinuation::snapshot_lambdas() const {
 void FractureContinuation::run_fixed_step(RunResult& result) {
   start(result);
   const double total = scene_.loading.total, increment = scene_.stepping.increment;
-  const long steps = total == 0 ? 0 : static_cast<long>(std::ceil(std::abs(total) / increment - 1e-9));
+  const long steps =
+      total == 0 ? 0 : static_cast<long>(std::ceil(std::abs(total) / increment - 1e-9));
   const std::vector<double> snapshots = snapshot_lambdas();
   std::size_t next_snapshot = 0;
   for (long k = 0; k <= steps; ++k) {
@@ -218,7 +226,8 @@ void FractureContinuation::run_fixed_step(RunResult& result) {
     if (model_.contact) settle_contacts(lambda);
     cascade(lambda, result);
     // A snapshot is taken at the first step that reaches its lambda.
-    while (next_snapshot < snapshots.size() && std::abs(snapshots[next_snapshot]) <= std::abs(lambda) + 1e-12) {
+    while (next_snapshot < snapshots.size() &&
+           std::abs(snapshots[next_snapshot]) <= std::abs(lambda) + 1e-12) {
       result.snapshots.push_back(make_snapshot(model_, displacement(lambda), lambda, &evaluator_));
       ++next_snapshot;
     }
@@ -233,8 +242,10 @@ void FractureContinuation::run_fixed_step(RunResult& result) {
 // hair below 1), then the cascade runs at that lambda exactly as in the fixed-step method.
 void FractureContinuation::run_event_driven(RunResult& result) {
   if (relaxation_) {
-    throw InputError(scene_.source_path + ": solver.method = \"relaxation\" works with the fixed-step "
-                     "method only (stepping.method = \"fixed\"): events need the exact affine path");
+    throw InputError(
+        scene_.source_path +
+        ": solver.method = \"relaxation\" works with the fixed-step "
+        "method only (stepping.method = \"fixed\"): events need the exact affine path");
   }
   if (integrated_path_) return run_integrated_events(result);
   start(result);
@@ -256,8 +267,11 @@ void FractureContinuation::run_event_driven(RunResult& result) {
   while (lambda != total) {
     const AffinePath& path = current_path(lambda);
     const PathCrossing crossing = next_break(model_, evaluator_, path, lambda, total);
-    const PathCrossing contact = model_.contact ? next_contact_switch(model_, path, lambda, total) : PathCrossing{};
-    const bool contact_first = contact.found() && (!crossing.found() || std::abs(contact.lambda) < std::abs(crossing.lambda));
+    const PathCrossing contact =
+        model_.contact ? next_contact_switch(model_, path, lambda, total) : PathCrossing{};
+    const bool contact_first =
+        contact.found() &&
+        (!crossing.found() || std::abs(contact.lambda) < std::abs(crossing.lambda));
     const double next = contact_first ? contact.lambda : crossing.found() ? crossing.lambda : total;
     record_snapshots_until(next, false);
     lambda = next;
@@ -265,7 +279,8 @@ void FractureContinuation::run_event_driven(RunResult& result) {
       const bool close = !model_.contact_active[contact.bond];
       model_.contact_active[contact.bond] = close;
       solver_.set_contact(contact.bond, close);
-      if (!close) hold_unsupported(fragments_.unsupported_after_break(model_, contact.bond), lambda);
+      if (!close)
+        hold_unsupported(fragments_.unsupported_after_break(model_, contact.bond), lambda);
       resolve(lambda);
       settle_contacts(lambda);
       cascade(lambda, result);
@@ -301,7 +316,8 @@ void FractureContinuation::run_integrated_events(RunResult& result) {
   if (model_.contact) settle_contacts(lambda);
   cascade(lambda, result);
   while (true) {
-    while (next_snapshot < snapshots.size() && std::abs(snapshots[next_snapshot]) <= std::abs(lambda)) {
+    while (next_snapshot < snapshots.size() &&
+           std::abs(snapshots[next_snapshot]) <= std::abs(lambda)) {
       result.snapshots.push_back(make_snapshot(model_, displacement(lambda), lambda, &evaluator_));
       ++next_snapshot;
     }
@@ -315,7 +331,8 @@ void FractureContinuation::run_integrated_events(RunResult& result) {
     state_current_ = true;
     path_current_ = false;
     if (event.bond >= 0) {
-      std::vector<CriticalBond> group = evaluator_.critical_group(model_, displacement(lambda), 1 - 1e-9);
+      std::vector<CriticalBond> group =
+          evaluator_.critical_group(model_, displacement(lambda), 1 - 1e-9);
       if (group.empty()) {
         const CriticalBond leader = evaluator_.most_critical(model_, displacement(lambda));
         group.push_back(leader);

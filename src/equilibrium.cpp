@@ -1,13 +1,13 @@
 // KINSOL Newton iteration with a CHOLMOD-backed SUNLinearSolver and SUNMatrix.
 #include "latfrac/equilibrium.h"
 
-#include <Eigen/Geometry>
 #include <kinsol/kinsol.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -166,9 +166,9 @@ void EquilibriumSolver::refactorize(const Vector& free_displacement, double lamb
   updates_since_factorization_ = 0;
 }
 
-void EquilibriumSolver::update_factor(std::int64_t bond,
-                                      const std::vector<std::pair<double, Vec3>>& weighted_directions,
-                                      bool downdate) {
+void EquilibriumSolver::update_factor(
+    std::int64_t bond, const std::vector<std::pair<double, Vec3>>& weighted_directions,
+    bool downdate) {
   loads_current_ = false;
   if (!factor_current_) return;  // the next factorization assembles the new stiffness
   if (updates_since_factorization_ >= options_.refactor_every) {
@@ -323,15 +323,17 @@ EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacem
     throw Error(message);
   }
   free_displacement = as_vector(k.unknowns);
-  check_flag(KINGetNumNonlinSolvIters(k.memory, &report.newton_iterations), "KINGetNumNonlinSolvIters");
+  check_flag(KINGetNumNonlinSolvIters(k.memory, &report.newton_iterations),
+             "KINGetNumNonlinSolvIters");
   check_flag(KINGetNumFuncEvals(k.memory, &report.residual_evaluations), "KINGetNumFuncEvals");
   double scaled_norm = 0;
   check_flag(KINGetFuncNorm(k.memory, &scaled_norm), "KINGetFuncNorm");
-  report.relative_residual = model_.residual(free_displacement, lambda).cwiseAbs().maxCoeff() / load;
+  report.relative_residual =
+      model_.residual(free_displacement, lambda).cwiseAbs().maxCoeff() / load;
   if (report.relative_residual > options_.tolerance) {
-    throw Error("KINSol stopped (" + flag_name(flag) +
-                ") with the residual at " + std::to_string(report.relative_residual) +
-                " of the load, above the tolerance " + std::to_string(options_.tolerance));
+    throw Error("KINSol stopped (" + flag_name(flag) + ") with the residual at " +
+                std::to_string(report.relative_residual) + " of the load, above the tolerance " +
+                std::to_string(options_.tolerance));
   }
   return report;
 }

@@ -23,14 +23,15 @@ FullPath full_path(const Model& model, const AffinePath& path) {
 
 std::array<double, 6> bond_stress(const std::vector<double>& node_stress, const Bond& bond) {
   std::array<double, 6> s{};
-  for (int k = 0; k < 6; ++k) s[k] = 0.5 * (node_stress[6 * bond.i + k] + node_stress[6 * bond.j + k]);
+  for (int k = 0; k < 6; ++k)
+    s[k] = 0.5 * (node_stress[6 * bond.i + k] + node_stress[6 * bond.j + k]);
   return s;
 }
 
 }  // namespace
 
-PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator, const AffinePath& path,
-                        double from, double to) {
+PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
+                        const AffinePath& path, double from, double to) {
   const double sign = to < from ? -1.0 : 1.0;  // search in s = sign * lambda, increasing
   const double s_from = sign * from, s_to = sign * to;
   const FullPath full = full_path(model, path);
@@ -52,7 +53,8 @@ PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator, c
       std::array<double, 6> s0 = bond_stress(stress0, bond), s1 = bond_stress(stress1, bond);
       for (double& value : s1) value *= sign;
       s = first_crossing_drucker_prager(s0, s1, criterion.dp_alpha,
-                                        criterion.dp_k_per_cohesion * model.bond_tau0[b], s_from, s_to);
+                                        criterion.dp_k_per_cohesion * model.bond_tau0[b], s_from,
+                                        s_to);
     } else {
       const Vec3& n0 = model.lattice.bond_direction[b];
       const double length = model.lattice.bond_length[b];
@@ -64,7 +66,8 @@ PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator, c
       affine.normal1 = e * n0.dot(du1);
       affine.shear0 = g * (du0 - n0.dot(du0) * n0);
       affine.shear1 = g * (du1 - n0.dot(du1) * n0);
-      s = first_crossing(criterion.criterion, affine, model.bond_sigma0[b], model.bond_tau0[b], s_from, s_to);
+      s = first_crossing(criterion.criterion, affine, model.bond_sigma0[b], model.bond_tau0[b],
+                         s_from, s_to);
     }
     crossing[b] = s;
     first = std::min(first, s);
@@ -91,7 +94,8 @@ PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator, c
   return event;
 }
 
-PathCrossing next_contact_switch(const Model& model, const AffinePath& path, double from, double to) {
+PathCrossing next_contact_switch(const Model& model, const AffinePath& path, double from,
+                                 double to) {
   const double sign = to < from ? -1.0 : 1.0;
   const double s_from = sign * from, s_to = sign * to;
   const FullPath full = full_path(model, path);

@@ -341,7 +341,8 @@ FaultReport analyze_faults(const RunResult& result, std::size_t index,
       shear += modes[broken[k]] == 1;
     }
     Fault fault = fit_fault(points, dim, options.diffuse_variance_ratio);
-    fault.diffuse = fault.diffuse || fault.fit_rms > options.diffuse_rms_spacings * result.scene.spacing;
+    fault.diffuse =
+        fault.diffuse || fault.fit_rms > options.diffuse_rms_spacings * result.scene.spacing;
     fault.tensile_share = static_cast<double>(tensile) / static_cast<double>(cluster.size());
     fault.shear_share = static_cast<double>(shear) / static_cast<double>(cluster.size());
     report.faults.push_back(fault);

@@ -54,7 +54,8 @@ std::string to_text(const FaultReport& report) {
     if (three_d) text += format(" %11.5g", fault.centroid[1]);
     text += format(" %11.5g", fault.centroid[2]);
     if (fault.diffuse)
-      text += format("  diffuse (variance ratio %.2f, rms %.3g m): not a fault", fault.variance_ratio, fault.fit_rms);
+      text += format("  diffuse (variance ratio %.2f, rms %.3g m): not a fault",
+                     fault.variance_ratio, fault.fit_rms);
     text += "\n";
   }
   if (report.grabens.empty()) return text;

@@ -20,11 +20,13 @@ FailureEvaluator::FailureEvaluator(const Strength& strength, const Model& model)
 }
 
 FailureIndex FailureEvaluator::bond_index(const Model& model, const Vector& displacement,
-                                          std::int64_t bond, const std::vector<double>& node_stress) const {
+                                          std::int64_t bond,
+                                          const std::vector<double>& node_stress) const {
   if (parameters_.criterion == Criterion::drucker_prager) {
     const Bond& pair = model.lattice.bonds[bond];
     std::array<double, 6> stress{};
-    for (int k = 0; k < 6; ++k) stress[k] = 0.5 * (node_stress[6 * pair.i + k] + node_stress[6 * pair.j + k]);
+    for (int k = 0; k < 6; ++k)
+      stress[k] = 0.5 * (node_stress[6 * pair.i + k] + node_stress[6 * pair.j + k]);
     return drucker_prager_index(stress, parameters_.dp_alpha,
                                 parameters_.dp_k_per_cohesion * model.bond_tau0[bond]);
   }
@@ -39,13 +41,14 @@ FailureIndex FailureEvaluator::bond_index(const Model& model, const Vector& disp
                        model.bond_tau0[bond]);
 }
 
-void FailureEvaluator::evaluate(const Model& model, const Vector& displacement, std::vector<double>& index,
-                                std::vector<BreakMode>& mode) const {
+void FailureEvaluator::evaluate(const Model& model, const Vector& displacement,
+                                std::vector<double>& index, std::vector<BreakMode>& mode) const {
   const std::int64_t bonds = model.lattice.bond_count();
   index.assign(bonds, 0.0);
   mode.assign(bonds, BreakMode::tensile);
   std::vector<double> node_stress;
-  if (parameters_.criterion == Criterion::drucker_prager) node_stress = node_stresses(model, displacement);
+  if (parameters_.criterion == Criterion::drucker_prager)
+    node_stress = node_stresses(model, displacement);
   for (std::int64_t b = 0; b < bonds; ++b) {
     if (!model.intact[b]) continue;
     const FailureIndex f = bond_index(model, displacement, b, node_stress);
@@ -67,7 +70,8 @@ double FailureEvaluator::rank(const Model& model, const Vector& displacement, st
   const Vec3 du = model.bond_displacement(displacement, b);
   const double dn = n0.dot(du);
   const double normal = std::max(dn, 0.0) * normal_scale_[b];
-  const double shear_squared = std::max(du.squaredNorm() - dn * dn, 0.0) * shear_scale_[b] * shear_scale_[b];
+  const double shear_squared =
+      std::max(du.squaredNorm() - dn * dn, 0.0) * shear_scale_[b] * shear_scale_[b];
   return criterion == Criterion::tensile    ? normal
          : criterion == Criterion::elliptic ? normal * normal + shear_squared
                                             : std::max(normal * normal, shear_squared);
@@ -85,10 +89,12 @@ CriticalBond FailureEvaluator::most_critical(const Model& model, const Vector& d
   return group.empty() ? CriticalBond{} : group.front();
 }
 
-std::vector<CriticalBond> FailureEvaluator::critical_group(const Model& model, const Vector& displacement,
+std::vector<CriticalBond> FailureEvaluator::critical_group(const Model& model,
+                                                           const Vector& displacement,
                                                            double threshold) const {
   std::vector<double> node_stress;
-  if (parameters_.criterion == Criterion::drucker_prager) node_stress = node_stresses(model, displacement);
+  if (parameters_.criterion == Criterion::drucker_prager)
+    node_stress = node_stresses(model, displacement);
   const double tolerance = rank_tolerance();
   double best = 0;
   std::vector<std::int64_t> candidates;
@@ -106,12 +112,15 @@ std::vector<CriticalBond> FailureEvaluator::critical_group(const Model& model, c
     group.push_back({b, f.value, f.mode});
   }
   if (group.empty()) return group;
-  const double largest =
-      std::max_element(group.begin(), group.end(), [](auto& p, auto& q) { return p.index < q.index; })->index;
-  std::erase_if(group, [&](const CriticalBond& c) { return c.index < largest * (1 - tie_tolerance); });
+  const double largest = std::max_element(group.begin(), group.end(), [](auto& p, auto& q) {
+                           return p.index < q.index;
+                         })->index;
+  std::erase_if(group,
+                [&](const CriticalBond& c) { return c.index < largest * (1 - tie_tolerance); });
   // Their failure indices are equal within the tolerance: the order is the bond id, so
   // that rounding cannot reorder a group from one build to the next.
-  std::sort(group.begin(), group.end(), [](const CriticalBond& p, const CriticalBond& q) { return p.bond < q.bond; });
+  std::sort(group.begin(), group.end(),
+            [](const CriticalBond& p, const CriticalBond& q) { return p.bond < q.bond; });
   if (largest < threshold) group.clear();
   return group;
 }

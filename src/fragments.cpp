@@ -53,7 +53,8 @@ bool FragmentDetector::connects(const Model& model, std::int64_t bond) const {
   return false;
 }
 
-std::vector<std::int64_t> FragmentDetector::component(const Model& model, std::int64_t start) const {
+std::vector<std::int64_t> FragmentDetector::component(const Model& model,
+                                                      std::int64_t start) const {
   std::vector<std::uint8_t> seen(model.lattice.node_count(), 0);
   std::vector<std::int64_t> nodes{start};
   seen[start] = 1;
@@ -68,7 +69,7 @@ std::vector<std::int64_t> FragmentDetector::component(const Model& model, std::i
 }
 
 std::vector<int> FragmentDetector::free_components(const Model& model,
-                                                  const std::vector<std::int64_t>& nodes) const {
+                                                   const std::vector<std::int64_t>& nodes) const {
   const int dim = model.dim();
   std::vector<int> free;
   for (int c = 0; c < dim; ++c) {
@@ -80,8 +81,8 @@ std::vector<int> FragmentDetector::free_components(const Model& model,
   return free;
 }
 
-std::vector<FragmentDetector::LoosePart> FragmentDetector::unsupported_after_break(const Model& model,
-                                                                                 std::int64_t bond) const {
+std::vector<FragmentDetector::LoosePart> FragmentDetector::unsupported_after_break(
+    const Model& model, std::int64_t bond) const {
   if (connects(model, bond)) return {};
   std::vector<LoosePart> loose;
   for (std::int64_t end : {model.lattice.bonds[bond].i, model.lattice.bonds[bond].j}) {
@@ -92,7 +93,8 @@ std::vector<FragmentDetector::LoosePart> FragmentDetector::unsupported_after_bre
   return loose;
 }
 
-std::vector<FragmentDetector::LoosePart> FragmentDetector::unsupported_parts(const Model& model) const {
+std::vector<FragmentDetector::LoosePart> FragmentDetector::unsupported_parts(
+    const Model& model) const {
   std::vector<std::uint8_t> seen(model.lattice.node_count(), 0);
   std::vector<LoosePart> loose;
   for (std::int64_t start = 0; start < model.lattice.node_count(); ++start) {
@@ -114,7 +116,8 @@ std::vector<FragmentEvent> prepare_supports(Model& model, const std::string& sou
   std::vector<FragmentEvent> events;
   for (const auto& part : loose) {
     if (static_cast<std::int64_t>(part.nodes.size()) == model.lattice.node_count()) {
-      throw InputError(source_path + ": [boundary]: the face conditions leave the body free to move "
+      throw InputError(source_path +
+                       ": [boundary]: the face conditions leave the body free to move "
                        "along an axis; hold at least one face along every axis");
     }
   }

@@ -74,7 +74,8 @@ std::vector<Vec3> place_nodes(const LatticeSpec& spec, const Grid& grid, const V
     }
     // HCP: B layers are shifted by (a/2, a / (2 sqrt 3)) against A layers.
     const bool layer_b = k % 2;
-    const double layer_shift_x = layer_b ? a / 2 : 0, layer_shift_y = layer_b ? a / (2 * std::sqrt(3.0)) : 0;
+    const double layer_shift_x = layer_b ? a / 2 : 0,
+                 layer_shift_y = layer_b ? a / (2 * std::sqrt(3.0)) : 0;
     for (long r = 0;; ++r) {
       const double y = layer_shift_y + r * grid.pitch_y;
       if (y > extent.y() + tolerance) break;

@@ -15,10 +15,14 @@ namespace {
 // Which condition wins where two faces meet on one component: the most restrictive.
 int rank_of(FaceCondition condition) {
   switch (condition) {
-    case FaceCondition::free: return 0;
-    case FaceCondition::roller: return 1;
-    case FaceCondition::extension: return 2;
-    case FaceCondition::fixed: return 3;
+    case FaceCondition::free:
+      return 0;
+    case FaceCondition::roller:
+      return 1;
+    case FaceCondition::extension:
+      return 2;
+    case FaceCondition::fixed:
+      return 3;
   }
   return 0;
 }
@@ -66,7 +70,8 @@ void assign_strengths(const Scene& scene, Model& model) {
     const double sigma0 = layer && layer->sigma0 ? *layer->sigma0 : criterion->sigma0;
     double tau0 = layer && layer->tau0 ? *layer->tau0 : criterion->tau0;
     // A layer that sets its own sigma0 but not tau0 scales a derived tau0 with it.
-    if (layer && layer->sigma0 && !layer->tau0 && !scene.strength->tau0) tau0 *= sigma0 / criterion->sigma0;
+    if (layer && layer->sigma0 && !layer->tau0 && !scene.strength->tau0)
+      tau0 *= sigma0 / criterion->sigma0;
     model.bond_sigma0[b] = scale * sigma0;
     model.bond_tau0[b] = scale * tau0;
   }
@@ -93,13 +98,14 @@ DofMap build_dof_map(const Lattice& lattice, const std::array<FaceCondition, fac
       const FaceCondition condition = faces[f];
       for (int c = 0; c < dim; ++c) {
         const bool normal = axes[c] == face_axis;
-        const bool constrains = condition == FaceCondition::fixed ||
-                                (normal && condition != FaceCondition::free);
+        const bool constrains =
+            condition == FaceCondition::fixed || (normal && condition != FaceCondition::free);
         const std::int64_t dof = node * dim + c;
         if (!constrains || rank_of(condition) <= rank[dof]) continue;
         rank[dof] = rank_of(condition);
-        map.prescribed_rate[dof] =
-            condition == FaceCondition::extension ? lattice.positions[node][face_axis] - centre[face_axis] : 0.0;
+        map.prescribed_rate[dof] = condition == FaceCondition::extension
+                                       ? lattice.positions[node][face_axis] - centre[face_axis]
+                                       : 0.0;
       }
     }
   }
@@ -182,7 +188,8 @@ void Model::add_bond_force(const Vector& displacement, std::int64_t b, Vector& f
   const Bond& bond = lattice.bonds[b];
   const Vec3& n0 = lattice.bond_direction[b];
   const Vec3 du = bond_displacement(displacement, b);
-  const Vec3 t = intact[b] ? law->tension({n0, lattice.bond_length[b]}, du, normal_stiffness[b], shear_stiffness[b])
+  const Vec3 t = intact[b] ? law->tension({n0, lattice.bond_length[b]}, du, normal_stiffness[b],
+                                          shear_stiffness[b])
                            : Vec3(normal_stiffness[b] * n0.dot(du) * n0);
   const int d = dim();
   for (int c = 0; c < d; ++c) {
@@ -198,14 +205,16 @@ Vector Model::internal_force(const Vector& displacement) const {
   return force;
 }
 
-Vector Model::internal_force(const Vector& displacement, const std::vector<std::int64_t>& bonds) const {
+Vector Model::internal_force(const Vector& displacement,
+                             const std::vector<std::int64_t>& bonds) const {
   Vector force = Vector::Zero(dofs.dof_count());
   for (std::int64_t b : bonds) add_bond_force(displacement, b, force);
   return force;
 }
 
 Vector Model::residual(const Vector& free_displacement, double lambda) const {
-  const Vector unbalanced = internal_force(full_displacement(free_displacement, lambda)) - external_force;
+  const Vector unbalanced =
+      internal_force(full_displacement(free_displacement, lambda)) - external_force;
   Vector r(dofs.free_count);
   for (std::int64_t dof = 0; dof < dofs.dof_count(); ++dof) {
     if (dofs.free_index[dof] >= 0) r[dofs.free_index[dof]] = unbalanced[dof];

@@ -33,7 +33,11 @@ std::size_t first_invalid_utf8_line(const std::string& text) {
   std::size_t line = 1;
   for (std::size_t k = 0; k < text.size();) {
     const auto byte = static_cast<unsigned char>(text[k]);
-    const int length = byte < 0x80 ? 1 : (byte >> 5) == 0x6 ? 2 : (byte >> 4) == 0xE ? 3 : (byte >> 3) == 0x1E ? 4 : 0;
+    const int length = byte < 0x80           ? 1
+                       : (byte >> 5) == 0x6  ? 2
+                       : (byte >> 4) == 0xE  ? 3
+                       : (byte >> 3) == 0x1E ? 4
+                                             : 0;
     if (length == 0 || k + length > text.size()) return line;
     for (int c = 1; c < length; ++c) {
       if ((static_cast<unsigned char>(text[k + c]) >> 6) != 0x2) return line;
@@ -99,7 +103,8 @@ toml::table parse_toml(const std::string& text, const std::string& source_name) 
         description = "an array opened on this line is not closed with ']'";
       }
     } else if (description.find("parsing string") != std::string::npos) {
-      description = "a string on this line is unclosed: it needs its closing quote (" + description + ")";
+      description =
+          "a string on this line is unclosed: it needs its closing quote (" + description + ")";
     }
     throw InputError(source_name + ":" + std::to_string(line) + ": malformed TOML: " + description +
                      "; see https://toml.io for the syntax");

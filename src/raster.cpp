@@ -1,8 +1,6 @@
 // The RGB canvas: clipped drawing primitives, bitmap text and PNG writing with libpng.
 #include "raster.h"
 
-#include "atomic_write.h"
-
 #include <png.h>
 
 #include <algorithm>
@@ -13,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "atomic_write.h"
 #include "bitmap_font.h"
 #include "latfrac/error.h"
 
@@ -162,7 +161,8 @@ void Canvas::write_png(const std::string& path) const {
   try {
     write_atomically(path, [&](const std::string& partial) {
       std::FILE* file = std::fopen(partial.c_str(), "wb");
-      if (file == nullptr) throw Error(std::string("cannot create the file: ") + std::strerror(errno));
+      if (file == nullptr)
+        throw Error(std::string("cannot create the file: ") + std::strerror(errno));
       char message[256] = "";
       bool written = write_png_rows(file, width_, height_, rgb_.data(), message);
       if (std::fclose(file) != 0 && written) {

@@ -42,11 +42,13 @@ Provenance provenance_of(const Scene& scene, const RunOptions& options) {
 std::vector<std::string> unsupported_effects(const Scene& scene) {
   std::vector<std::string> missing;
   if (scene.contact && !scene.strength) {
-    missing.push_back("[contact] on an elastic scene (contacts are settled by the fracture run: add a "
-                      "[strength] section, with a strength that cannot be reached if nothing should break)");
+    missing.push_back(
+        "[contact] on an elastic scene (contacts are settled by the fracture run: add a "
+        "[strength] section, with a strength that cannot be reached if nothing should break)");
   }
   if (scene.solver.method == EquilibriumMethod::relaxation && !scene.strength) {
-    missing.push_back("solver.method = \"relaxation\" on an elastic scene (it is the fracture baseline)");
+    missing.push_back(
+        "solver.method = \"relaxation\" on an elastic scene (it is the fracture baseline)");
   }
   return missing;
 }
@@ -60,7 +62,8 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   RunResult result;
   result.provenance = provenance_of(scene, options);
-  result.scene = {scene.name, scene.lattice.dim, scene.lattice.spacing, "", scene.output.exaggeration};
+  result.scene = {scene.name, scene.lattice.dim, scene.lattice.spacing, "",
+                  scene.output.exaggeration};
 
   Model model = build_model(scene);
   record_lattice(model, result);
@@ -97,8 +100,8 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     for (double lambda : lambdas) {
       if (linear) free_displacement = path.at(lambda);
       solver.solve(lambda, free_displacement);
-      result.snapshots.push_back(
-          make_snapshot(model, model.full_displacement(free_displacement, lambda), lambda, nullptr));
+      result.snapshots.push_back(make_snapshot(
+          model, model.full_displacement(free_displacement, lambda), lambda, nullptr));
       progress.update(lambda, 0);
     }
   }
@@ -108,7 +111,8 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   result.summary.solves = solver.counters().solves + relaxation_solves;
   result.summary.factorizations = solver.counters().factorizations;
   result.summary.factor_updates = solver.counters().factor_updates;
-  result.summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.summary.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 
@@ -116,14 +120,17 @@ std::string summary_text(const RunResult& result) {
   std::ostringstream text;
   const RunSummary& s = result.summary;
   text << "summary of " << result.scene.name << " (" << result.scene.dim << "-D, spacing "
-       << result.scene.spacing << " m, " << (result.scene.criterion.empty() ? "elastic" : result.scene.criterion)
-       << ")\n"
+       << result.scene.spacing << " m, "
+       << (result.scene.criterion.empty() ? "elastic" : result.scene.criterion) << ")\n"
        << "  nodes " << result.node_count() << ", bonds " << result.bond_count() << "\n"
        << "  final lambda " << s.final_lambda << ", bonds broken " << s.breaks << ", events "
        << result.events.size() << "\n"
-       << "  parts held for lack of support " << result.fragments.size() << ", contact cycles resolved "
-       << s.contact_cycles << "\n"
-       << (s.relaxation_sweeps ? "  relaxation sweeps " + std::to_string(s.relaxation_sweeps) + ", solves stopped by the sweep cap " + std::to_string(s.relaxation_unconverged) + "\n" : std::string())
+       << "  parts held for lack of support " << result.fragments.size()
+       << ", contact cycles resolved " << s.contact_cycles << "\n"
+       << (s.relaxation_sweeps ? "  relaxation sweeps " + std::to_string(s.relaxation_sweeps) +
+                                     ", solves stopped by the sweep cap " +
+                                     std::to_string(s.relaxation_unconverged) + "\n"
+                               : std::string())
        << "  solves " << s.solves << ", factorizations " << s.factorizations << ", factor updates "
        << s.factor_updates << "\n"
        << "  wall time " << s.wall_seconds << " s\n";

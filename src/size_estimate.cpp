@@ -15,7 +15,8 @@ SizeEstimate estimate_size(const Scene& scene) {
   // Counted in floating point from the geometry (count_lattice's integers would overflow
   // for an absurd scene).
   const double a = spec.spacing;
-  const double rows = spec.size[2] / (spec.dim == 2 ? std::sqrt(3.0) / 2 * a : std::sqrt(2.0 / 3.0) * a) + 1;
+  const double rows =
+      spec.size[2] / (spec.dim == 2 ? std::sqrt(3.0) / 2 * a : std::sqrt(2.0 / 3.0) * a) + 1;
   const double per_row = spec.size[0] / a + 1;
   const double columns = spec.dim == 2 ? 1.0 : spec.size[1] / (std::sqrt(3.0) / 2 * a) + 1;
   SizeEstimate estimate;
@@ -23,7 +24,8 @@ SizeEstimate estimate_size(const Scene& scene) {
   estimate.bonds = (spec.dim == 2 ? 3.0 : spec.next_nearest ? 9.0 : 6.0) * estimate.nodes;
   estimate.unknowns = estimate.nodes * spec.dim;
   const double n = estimate.unknowns;
-  estimate.factor_nonzeros = spec.dim == 2 ? 7.1 * n * std::log(std::max(n, 2.0)) : 15.6 * std::pow(n, 4.0 / 3.0);
+  estimate.factor_nonzeros =
+      spec.dim == 2 ? 7.1 * n * std::log(std::max(n, 2.0)) : 15.6 * std::pow(n, 4.0 / 3.0);
   estimate.memory_bytes = 24.0 * estimate.factor_nonzeros + 1024.0 * estimate.nodes;
   return estimate;
 }
@@ -40,13 +42,15 @@ std::string readable_bytes(double bytes) {
   return text.str();
 }
 
-std::string memory_refusal(const Scene& scene, const SizeEstimate& estimate, double available_bytes) {
+std::string memory_refusal(const Scene& scene, const SizeEstimate& estimate,
+                           double available_bytes) {
   if (available_bytes <= 0 || estimate.memory_bytes <= available_bytes) return "";
   std::ostringstream text;
   text << scene.source_path << ": lattice.spacing: " << scene.lattice.spacing << " m makes about "
-       << std::setprecision(3) << estimate.nodes << " nodes needing about " << readable_bytes(estimate.memory_bytes)
-       << ", but only " << readable_bytes(available_bytes)
-       << " are available; use a larger spacing or a smaller lattice.size (or --force to try anyway)";
+       << std::setprecision(3) << estimate.nodes << " nodes needing about "
+       << readable_bytes(estimate.memory_bytes) << ", but only " << readable_bytes(available_bytes)
+       << " are available; use a larger spacing or a smaller lattice.size (or --force to try "
+          "anyway)";
   return text.str();
 }
 

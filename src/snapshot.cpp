@@ -8,7 +8,8 @@ namespace latfrac {
 void record_lattice(const Model& model, RunResult& result) {
   const Lattice& lattice = model.lattice;
   result.positions.reserve(lattice.node_count() * 3);
-  for (const Vec3& p : lattice.positions) result.positions.insert(result.positions.end(), {p.x(), p.y(), p.z()});
+  for (const Vec3& p : lattice.positions)
+    result.positions.insert(result.positions.end(), {p.x(), p.y(), p.z()});
   result.bonds.reserve(lattice.bond_count() * 2);
   for (const Bond& b : lattice.bonds) {
     result.bonds.insert(result.bonds.end(), {b.i, b.j});

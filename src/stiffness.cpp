@@ -66,8 +66,8 @@ void StiffnessMatrix::assemble(const Model& model, const Vector& displacement) {
                     model.node_displacement(displacement, pair.i);
     const Mat3 tangent =
         contact ? Mat3(model.normal_stiffness[bond] * n0 * n0.transpose())
-                : model.law->tangent({n0, lattice.bond_length[bond]}, du, model.normal_stiffness[bond],
-                                     model.shear_stiffness[bond]);
+                : model.law->tangent({n0, lattice.bond_length[bond]}, du,
+                                     model.normal_stiffness[bond], model.shear_stiffness[bond]);
     add_to_node(pair.i, tangent);
     add_to_node(pair.j, tangent);
     for (int a = 0; a < d; ++a)

@@ -1,8 +1,6 @@
 // The convergence study: the runs, their comparison with the reference, study.csv and study.md.
 #include "latfrac/study.h"
 
-#include "latfrac/fault_analysis.h"
-
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -17,6 +15,7 @@
 
 #include "atomic_write.h"
 #include "latfrac/error.h"
+#include "latfrac/fault_analysis.h"
 #include "latfrac/run.h"
 
 namespace latfrac {
@@ -365,7 +364,8 @@ std::string study_markdown(const StudyResult& study) {
   for (const std::string& line : study_interpretation(study))
     if (!line.empty()) md << line << "\n";
   md << "\nFault angle: alpha (to the vertical) of the largest fault that fault analysis does not "
-        "flag as diffuse (docs/fault-analysis.md); n/a when there is none. First-break error: blank "
+        "flag as diffuse (docs/fault-analysis.md); n/a when there is none. First-break error: "
+        "blank "
         "when the reference first breaks at lambda = 0. Plot: study.png (error against wall time, "
         "log-log).\n";
   return md.str();

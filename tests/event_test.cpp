@@ -96,8 +96,8 @@ TEST_CASE("Fixed-step runs converge to the event-driven result as ds shrinks", "
     scene.stepping = {SteppingMethod::fixed, ds};
     differences.push_back(symmetric_difference(broken_set(run_scene(scene, {})), reference));
   }
-  INFO("broken-set differences at ds = 1e-4, 1e-5, 1e-6: " << differences[0] << ", " << differences[1]
-                                                          << ", " << differences[2]);
+  INFO("broken-set differences at ds = 1e-4, 1e-5, 1e-6: "
+       << differences[0] << ", " << differences[1] << ", " << differences[2]);
   CHECK(differences[2] <= differences[0]);
   CHECK(differences[2] == 0.0);
 }
@@ -117,8 +117,11 @@ TEST_CASE("A mirror-symmetric scene breaks mirror pairs at equal lambda, the sam
   const Model model = build_model(scene);
   // The mirror image of each bond about x = L / 2.
   std::map<std::pair<long, long>, std::int64_t> node_at;
-  auto key = [](const Vec3& p) { return std::make_pair(std::lround(p.x() * 8), std::lround(p.z() * 8)); };
-  for (std::int64_t n = 0; n < model.lattice.node_count(); ++n) node_at[key(model.lattice.positions[n])] = n;
+  auto key = [](const Vec3& p) {
+    return std::make_pair(std::lround(p.x() * 8), std::lround(p.z() * 8));
+  };
+  for (std::int64_t n = 0; n < model.lattice.node_count(); ++n)
+    node_at[key(model.lattice.positions[n])] = n;
   std::map<std::pair<std::int64_t, std::int64_t>, std::int64_t> bond_of;
   for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
     bond_of[{model.lattice.bonds[b].i, model.lattice.bonds[b].j}] = b;

@@ -42,10 +42,12 @@ FinalState final_state(const Scene& scene, const RunResult& result) {
   const std::vector<int> axes = state.model.lattice.axes();
   state.displacement.resize(state.model.dofs.dof_count());
   for (std::int64_t n = 0; n < state.model.lattice.node_count(); ++n) {
-    for (int c = 0; c < dim; ++c) state.displacement[n * dim + c] = last.displacement[3 * n + axes[c]];
+    for (int c = 0; c < dim; ++c)
+      state.displacement[n * dim + c] = last.displacement[3 * n + axes[c]];
   }
   for (std::int64_t b = 0; b < state.model.lattice.bond_count(); ++b) {
-    const double dn = state.model.lattice.bond_direction[b].dot(state.model.bond_displacement(state.displacement, b));
+    const double dn = state.model.lattice.bond_direction[b].dot(
+        state.model.bond_displacement(state.displacement, b));
     state.model.contact_active[b] = state.model.contact_capable(b) && dn < 0;
   }
   return state;
@@ -121,7 +123,8 @@ TEST_CASE("Contact across a pre-cut transmits the load when pressed and none whe
     scene.stepping.increment = 1e-3;
     const RunResult result = run_scene(scene, {});
     const FinalState state = final_state(scene, result);
-    const double right = wall_reaction(state, Face::x_max), left = wall_reaction(state, Face::x_min);
+    const double right = wall_reaction(state, Face::x_max),
+                 left = wall_reaction(state, Face::x_min);
     // The force carried across the cut: the x components of the contact springs' forces
     // on the right-hand block (each bond oriented from the left block to the right one).
     double through_cut = 0;
@@ -130,8 +133,10 @@ TEST_CASE("Contact across a pre-cut transmits the load when pressed and none whe
       if (!state.model.contact_active[b]) continue;
       ++active;
       const Vec3& n0 = state.model.lattice.bond_direction[b];
-      const double tension = state.model.normal_stiffness[b] * n0.dot(state.model.bond_displacement(state.displacement, b));
-      const bool j_on_right = state.model.lattice.positions[state.model.lattice.bonds[b].j].x() > 10.25;
+      const double tension = state.model.normal_stiffness[b] *
+                             n0.dot(state.model.bond_displacement(state.displacement, b));
+      const bool j_on_right =
+          state.model.lattice.positions[state.model.lattice.bonds[b].j].x() > 10.25;
       through_cut += (j_on_right ? -1.0 : 1.0) * tension * n0.x();
     }
     CHECK(active > 0);
@@ -141,7 +146,8 @@ TEST_CASE("Contact across a pre-cut transmits the load when pressed and none whe
     // Equilibrium with the sign conditions: no open contact penetrates.
     for (std::int64_t b = 0; b < state.model.lattice.bond_count(); ++b) {
       if (!state.model.contact_capable(b) || state.model.contact_active[b]) continue;
-      CHECK(state.model.lattice.bond_direction[b].dot(state.model.bond_displacement(state.displacement, b)) >= -1e-12);
+      CHECK(state.model.lattice.bond_direction[b].dot(
+                state.model.bond_displacement(state.displacement, b)) >= -1e-12);
     }
   }
   SECTION("pulled: the blocks separate and the walls feel nothing") {
@@ -150,7 +156,8 @@ TEST_CASE("Contact across a pre-cut transmits the load when pressed and none whe
     const RunResult result = run_scene(scene, {});
     const FinalState state = final_state(scene, result);
     int active = 0;
-    for (std::int64_t b = 0; b < state.model.lattice.bond_count(); ++b) active += state.model.contact_active[b];
+    for (std::int64_t b = 0; b < state.model.lattice.bond_count(); ++b)
+      active += state.model.contact_active[b];
     CHECK(active == 0);
     // Scale: the force the intact body would carry, E' lambda H.
     const double scale = 100e9 / 0.96 * 1e-3 * 10.0;
@@ -179,7 +186,8 @@ TEST_CASE("A block cut loose is held (no contact) or rests on its contacts, neve
     // Held vertically where it was (the walls still hold it along x), and reported.
     CHECK(result.fragments.size() == 1);
     for (std::int64_t n = 0; n < state.model.lattice.node_count(); ++n) {
-      if (state.model.lattice.positions[n].z() > 5.2) CHECK(state.model.node_displacement(state.displacement, n).z() == 0.0);
+      if (state.model.lattice.positions[n].z() > 5.2)
+        CHECK(state.model.node_displacement(state.displacement, n).z() == 0.0);
     }
   } else {
     // Resting on its contacts: the base carries the whole weight.

@@ -46,13 +46,15 @@ TEST_CASE("Lithostatic stress under gravity with the walls held", "[equilibrium]
     // Mid-body: away from the top and base rows, and more than the body's height from the
     // side faces, whose nodes have fewer bonds and shed weight into a boundary layer that
     // decays over about the height (docs/model.md).
-    const bool mid_body = p.z() > 0.2 * lattice.extent.z() && p.z() < 0.8 * lattice.extent.z() &&
-                          std::abs(p.x() - lattice.extent.x() / 2) < 0.15 * lattice.extent.x() &&
-                          (dim == 2 || std::abs(p.y() - lattice.extent.y() / 2) < 0.15 * lattice.extent.y());
+    const bool mid_body =
+        p.z() > 0.2 * lattice.extent.z() && p.z() < 0.8 * lattice.extent.z() &&
+        std::abs(p.x() - lattice.extent.x() / 2) < 0.15 * lattice.extent.x() &&
+        (dim == 2 || std::abs(p.y() - lattice.extent.y() / 2) < 0.15 * lattice.extent.y());
     if (!mid_body) continue;
     const double expected_zz = -rho_g * (surface - p.z());
     worst_zz = std::max(worst_zz, std::abs(stress[n * 6 + 2] / expected_zz - 1));
-    worst_xx = std::max(worst_xx, std::abs(stress[n * 6 + 0] / (nu / (1 - nu) * stress[n * 6 + 2]) - 1));
+    worst_xx =
+        std::max(worst_xx, std::abs(stress[n * 6 + 0] / (nu / (1 - nu) * stress[n * 6 + 2]) - 1));
     ++checked;
   }
   INFO("dim " << dim << ": " << checked << " nodes, worst zz " << worst_zz << ", worst xx "
@@ -85,14 +87,17 @@ TEST_CASE("Uniaxial extension: wall stress over strain is the plane-strain modul
   const Material material = testing::paper_material();
   const double expected = material.young / (1 - material.poisson * material.poisson);
   SECTION("2-D, 100 x 20 spacings") {
-    const double modulus = apparent_modulus(testing::box_scene(2, 1.0, {100.0, 0, 20.0}, false), 1e-3);
+    const double modulus =
+        apparent_modulus(testing::box_scene(2, 1.0, {100.0, 0, 20.0}, false), 1e-3);
     CHECK(modulus == Approx(expected).epsilon(0.02));
   }
   SECTION("3-D: the modulus of cubes of side 10 a and 20 a, extrapolated in a / L") {
     // Surface nodes lack bonds, so a body of side L is softer by O(a / L); the continuum
     // limit M(inf) = 2 M(2L) - M(L) removes that first-order term.
-    const double small = apparent_modulus(testing::box_scene(3, 1.0, {10.0, 10.0, 10.0}, false), 1e-3);
-    const double large = apparent_modulus(testing::box_scene(3, 1.0, {20.0, 20.0, 20.0}, false), 1e-3);
+    const double small =
+        apparent_modulus(testing::box_scene(3, 1.0, {10.0, 10.0, 10.0}, false), 1e-3);
+    const double large =
+        apparent_modulus(testing::box_scene(3, 1.0, {20.0, 20.0, 20.0}, false), 1e-3);
     INFO("M(10 a) " << small << ", M(20 a) " << large);
     CHECK(small < large);
     CHECK(2 * large - small == Approx(expected).epsilon(0.02));

@@ -63,8 +63,8 @@ class FractureContinuation {
   void break_group(const std::vector<CriticalBond>& group, double lambda, std::int64_t cascade_id,
                    RunResult& result);
   // Breaks one bond at lambda and re-equilibrates (contacts settled).
-  void break_bond(std::int64_t bond, const FailureIndex& failure, double lambda, std::int64_t cascade_id,
-                  RunResult& result);
+  void break_bond(std::int64_t bond, const FailureIndex& failure, double lambda,
+                  std::int64_t cascade_id, RunResult& result);
   // Opens and closes contacts until every active one is in compression and every
   // inactive one is open.
   void settle_contacts(double lambda);
@@ -78,8 +78,8 @@ class FractureContinuation {
   FailureEvaluator evaluator_;
   FragmentDetector fragments_;
   AffinePath path_;
-  bool path_current_ = false;      // path_ describes the current stiffness
-  Vector state_;                   // free displacement at state_lambda_, when valid
+  bool path_current_ = false;  // path_ describes the current stiffness
+  Vector state_;               // free displacement at state_lambda_, when valid
   double state_lambda_ = 0;
   bool state_current_ = false;
   std::int64_t breaks_ = 0, chattering_resolved_ = 0;

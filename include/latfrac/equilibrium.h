@@ -101,7 +101,8 @@ class EquilibriumSolver {
   // The relative residual of a free displacement at lambda, max |R| / max |R(0, lambda)|.
   double relative_residual(const Vector& free_displacement, double lambda);
   // Rank update of the factor with the columns sqrt(w) (e_j - e_i) (x) v on the free dofs.
-  void update_factor(std::int64_t bond, const std::vector<std::pair<double, Vec3>>& weighted_directions,
+  void update_factor(std::int64_t bond,
+                     const std::vector<std::pair<double, Vec3>>& weighted_directions,
                      bool downdate);
   long updates_since_factorization_ = 0;
 

@@ -27,11 +27,12 @@ struct PathCrossing {
 // The first bond to reach f = 1 after `from` and no later than `to`. Bonds reaching 1 at
 // the same lambda within rounding (1e-12 relative) are tied: the largest f at that lambda
 // wins, then the lowest bond id.
-PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator, const AffinePath& path,
-                        double from, double to);
+PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
+                        const AffinePath& path, double from, double to);
 
 // The first contact that opens (active, dn rising through 0) or closes (open, dn falling
 // through 0) after `from` and no later than `to`; lowest bond id on ties.
-PathCrossing next_contact_switch(const Model& model, const AffinePath& path, double from, double to);
+PathCrossing next_contact_switch(const Model& model, const AffinePath& path, double from,
+                                 double to);
 
 }  // namespace latfrac

@@ -35,7 +35,8 @@ class FragmentDetector {
  private:
   bool connects(const Model& model, std::int64_t bond) const;
   std::vector<std::int64_t> component(const Model& model, std::int64_t start) const;
-  std::vector<int> free_components(const Model& model, const std::vector<std::int64_t>& nodes) const;
+  std::vector<int> free_components(const Model& model,
+                                   const std::vector<std::int64_t>& nodes) const;
   // Neighbours of each node with the bond that joins them.
   std::vector<std::vector<std::pair<std::int64_t, std::int64_t>>> neighbours_;
 };

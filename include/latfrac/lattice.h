@@ -34,15 +34,15 @@ struct Bond {
 class Lattice {
  public:
   int dim = 2;
-  double spacing = 0;                  // a, m
-  Vec3 extent = Vec3::Zero();          // lattice extent along x, y, z, m (y = 0 in 2-D)
-  double node_volume = 0;              // V0: m^2 per metre (2-D) or m^3 (3-D)
-  double row_pitch = 0;                // distance between rows (2-D) or layers (3-D), m
-  std::vector<Vec3> positions;         // reference positions X, m
-  std::vector<std::uint8_t> face_mask; // bit f set: node on Face f
+  double spacing = 0;                   // a, m
+  Vec3 extent = Vec3::Zero();           // lattice extent along x, y, z, m (y = 0 in 2-D)
+  double node_volume = 0;               // V0: m^2 per metre (2-D) or m^3 (3-D)
+  double row_pitch = 0;                 // distance between rows (2-D) or layers (3-D), m
+  std::vector<Vec3> positions;          // reference positions X, m
+  std::vector<std::uint8_t> face_mask;  // bit f set: node on Face f
   std::vector<Bond> bonds;
-  std::vector<Vec3> bond_direction;    // unit vector n0 from i to j
-  std::vector<double> bond_length;     // L0, m
+  std::vector<Vec3> bond_direction;  // unit vector n0 from i to j
+  std::vector<double> bond_length;   // L0, m
 
   std::int64_t node_count() const { return static_cast<std::int64_t>(positions.size()); }
   std::int64_t bond_count() const { return static_cast<std::int64_t>(bonds.size()); }
@@ -50,7 +50,9 @@ class Lattice {
     return face_mask[node] & (1u << static_cast<int>(face));
   }
   // The axes that carry degrees of freedom: {x, z} in 2-D, {x, y, z} in 3-D.
-  std::vector<int> axes() const { return dim == 2 ? std::vector<int>{0, 2} : std::vector<int>{0, 1, 2}; }
+  std::vector<int> axes() const {
+    return dim == 2 ? std::vector<int>{0, 2} : std::vector<int>{0, 1, 2};
+  }
 };
 
 // Builds the lattice of `spec`. Throws InputError for a non-positive spacing or size, a

@@ -45,9 +45,9 @@ class Model {
   // continuation's active-set iteration keeps the set consistent with dn <= 0.
   bool contact = false;
   std::vector<std::uint8_t> contact_active;
-  std::vector<double> node_poisson;      // per node, for the 2-D out-of-plane stress
+  std::vector<double> node_poisson;  // per node, for the 2-D out-of-plane stress
   DofMap dofs;
-  Vector external_force;                 // per dof (gravity), N (2-D: N per metre)
+  Vector external_force;  // per dof (gravity), N (2-D: N per metre)
   std::unique_ptr<BondLaw> law;
 
   int dim() const { return lattice.dim; }
@@ -82,7 +82,6 @@ class Model {
 Model build_model(const Scene& scene);
 
 // Builds the supports of a lattice from per-face conditions.
-DofMap build_dof_map(const Lattice& lattice,
-                     const std::array<FaceCondition, face_count>& faces);
+DofMap build_dof_map(const Lattice& lattice, const std::array<FaceCondition, face_count>& faces);
 
 }  // namespace latfrac

@@ -25,9 +25,9 @@ struct Provenance {
 struct SceneInfo {
   std::string name;
   int dim = 2;
-  double spacing = 0;                   // m
-  std::string criterion;                // "" for an elastic scene
-  double exaggeration = 1;              // for pictures
+  double spacing = 0;       // m
+  std::string criterion;    // "" for an elastic scene
+  double exaggeration = 1;  // for pictures
 };
 
 struct BreakEvent {
@@ -46,10 +46,10 @@ struct FragmentEvent {
 
 struct Snapshot {
   double lambda = 0;
-  std::vector<double> displacement;       // N x 3, m
-  std::vector<std::uint8_t> bond_intact;  // M
-  std::vector<double> bond_failure_index; // M ("bond_f" in the file)
-  std::vector<double> node_stress;        // N x 6, Pa
+  std::vector<double> displacement;        // N x 3, m
+  std::vector<std::uint8_t> bond_intact;   // M
+  std::vector<double> bond_failure_index;  // M ("bond_f" in the file)
+  std::vector<double> node_stress;         // N x 6, Pa
 };
 
 struct RunSummary {
@@ -59,7 +59,7 @@ struct RunSummary {
   std::int64_t solves = 0;
   std::int64_t factorizations = 0;
   std::int64_t factor_updates = 0;
-  std::int64_t contact_cycles = 0;  // contact iterations that cycled and were resolved
+  std::int64_t contact_cycles = 0;          // contact iterations that cycled and were resolved
   std::int64_t relaxation_sweeps = 0;       // solver.method = "relaxation": sweeps in all
   std::int64_t relaxation_unconverged = 0;  // relaxation solves stopped by the sweep cap
 };
@@ -67,9 +67,9 @@ struct RunSummary {
 struct RunResult {
   Provenance provenance;
   SceneInfo scene;
-  std::vector<double> positions;        // N x 3, m
-  std::vector<std::int64_t> bonds;      // M x 2
-  std::vector<std::int8_t> bond_kind;   // M: 0 nearest, 1 next-nearest
+  std::vector<double> positions;       // N x 3, m
+  std::vector<std::int64_t> bonds;     // M x 2
+  std::vector<std::int8_t> bond_kind;  // M: 0 nearest, 1 next-nearest
   std::vector<BreakEvent> events;
   std::vector<FragmentEvent> fragments;
   std::vector<Snapshot> snapshots;

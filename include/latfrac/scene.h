@@ -45,10 +45,10 @@ struct Material {
 
 struct Strength {
   Criterion criterion = Criterion::elliptic;
-  double sigma0 = 0;                    // tensile strength, Pa
-  std::optional<double> tau0;           // shear cohesion, Pa, when given directly
-  std::optional<double> friction_angle; // psi, degrees
-  double tau0_factor = 1;               // m in tau0 = m sigma0 (1 + sin psi) / (2 cos psi)
+  double sigma0 = 0;                     // tensile strength, Pa
+  std::optional<double> tau0;            // shear cohesion, Pa, when given directly
+  std::optional<double> friction_angle;  // psi, degrees
+  double tau0_factor = 1;                // m in tau0 = m sigma0 (1 + sin psi) / (2 cos psi)
 };
 
 struct Gravity {
@@ -68,7 +68,7 @@ struct Stepping {
 // 2-D: the segment from -> to in the x-z plane (y components are 0).
 // 3-D: the rectangle corner + s edge1 + t edge2, s, t in [0, 1].
 struct Precut {
-  std::array<double, 3> from{0, 0, 0}, to{0, 0, 0};                     // 2-D, m
+  std::array<double, 3> from{0, 0, 0}, to{0, 0, 0};                       // 2-D, m
   std::array<double, 3> corner{0, 0, 0}, edge1{0, 0, 0}, edge2{0, 0, 0};  // 3-D, m
 };
 

@@ -30,6 +30,7 @@ std::string describe(const SizeEstimate& estimate);
 std::string readable_bytes(double bytes);
 
 // The refusal message when the estimate exceeds the available memory, or "" when it fits.
-std::string memory_refusal(const Scene& scene, const SizeEstimate& estimate, double available_bytes);
+std::string memory_refusal(const Scene& scene, const SizeEstimate& estimate,
+                           double available_bytes);
 
 }  // namespace latfrac
