@@ -143,13 +143,15 @@ void CholeskyFactor::factorize(StiffnessMatrix& matrix) {
   }
   const int ok = cholmod_l_factorize(&a, state_->factor, &c);
   if (c.status == CHOLMOD_NOT_POSDEF) {
+    const auto* perm = static_cast<const std::int64_t*>(state_->factor->Perm);
+    const std::int64_t column = perm[state_->factor->minor];
     std::ostringstream message;
     message << "cholmod_l_factorize: the stiffness matrix is not positive definite (failed at "
                "column "
             << state_->factor->minor << " of " << matrix.size()
             << "): part of the body can move without resistance (a rigid-body motion the face "
                "conditions do not prevent, or a piece cut loose)";
-    throw Error(message.str());
+    throw SingularStiffness(message.str(), column);
   }
   check(c, ok, "cholmod_l_factorize");
   // A rigid-body mode can survive roundoff as a tiny positive pivot: catch it here.
@@ -159,7 +161,7 @@ void CholeskyFactor::factorize(StiffnessMatrix& matrix) {
     message << "cholmod_l_factorize: the stiffness matrix is singular to working precision "
                "(reciprocal condition estimate "
             << rcond << "): part of the body can move without resistance";
-    throw Error(message.str());
+    throw SingularStiffness(message.str(), smallest_pivot_column());
   }
   factorized_ = true;
 }
@@ -230,6 +232,31 @@ void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
         "the body can move without resistance");
   }
   check(c, ok, "cholmod_l_updown");
+}
+
+// The column (in the matrix's own numbering) of the smallest diagonal entry of the
+// supernodal factor: where a nearly free motion shows.
+std::int64_t CholeskyFactor::smallest_pivot_column() const {
+  const cholmod_factor& f = *state_->factor;
+  if (!f.is_super) return -1;
+  const auto* super = static_cast<const std::int64_t*>(f.super);
+  const auto* pi = static_cast<const std::int64_t*>(f.pi);
+  const auto* px = static_cast<const std::int64_t*>(f.px);
+  const auto* x = static_cast<const double*>(f.x);
+  const auto* perm = static_cast<const std::int64_t*>(f.Perm);
+  std::int64_t smallest = -1;
+  double value = 0;
+  for (std::size_t s = 0; s < f.nsuper; ++s) {
+    const std::int64_t rows = pi[s + 1] - pi[s];
+    for (std::int64_t k = 0; k < super[s + 1] - super[s]; ++k) {
+      const double diagonal = std::abs(x[px[s] + k * rows + k]);
+      if (smallest < 0 || diagonal < value) {
+        smallest = super[s] + k;
+        value = diagonal;
+      }
+    }
+  }
+  return smallest < 0 ? -1 : perm[smallest];
 }
 
 std::int64_t CholeskyFactor::factor_nonzeros() const {

@@ -26,9 +26,40 @@ FractureContinuation::FractureContinuation(Model& model, const Scene& scene,
   integrated_path_ = !model.law->is_linear();
 }
 
+// The safety net behind the support check: a piece held only by frictionless contacts
+// (stiff along their normals alone) can still slide, which no connectivity check sees.
+// When a factorization finds no stiffness, the node of the unknown where it showed is
+// held at its last known displacement, recorded as a fragment, and the solve tried again
+// (docs/robustness.md).
+template <typename Solve>
+auto FractureContinuation::holding_singular(double lambda, Solve solve) {
+  for (std::int64_t attempt = 0;; ++attempt) {
+    try {
+      return solve();
+    } catch (const SingularStiffness& singular) {
+      if (singular.unknown() < 0 || attempt > model_.lattice.node_count()) throw;
+      std::int64_t dof = 0;
+      while (dof < model_.dofs.dof_count() && model_.dofs.free_index[dof] != singular.unknown()) ++dof;
+      if (dof == model_.dofs.dof_count()) throw;
+      FragmentDetector::LoosePart part{{dof / model_.dim()}, {}};
+      for (int c = 0; c < model_.dim(); ++c) part.free_components.push_back(c);
+      const Vector last = state_.size() == model_.dofs.free_count ? model_.full_displacement(state_, lambda)
+                                                                  : Vector::Zero(model_.dofs.dof_count());
+      hold_part(model_, part, last);
+      fragment_log_.push_back({lambda, 1});
+      solver_.supports_changed();
+      state_current_ = path_current_ = false;
+      state_ = Vector();
+    }
+  }
+}
+
 void FractureContinuation::newton(double lambda) {
   if (state_.size() != model_.dofs.free_count) state_ = Vector::Zero(model_.dofs.free_count);
-  solver_.solve(lambda, state_);
+  holding_singular(lambda, [&] {
+    if (state_.size() != model_.dofs.free_count) state_ = Vector::Zero(model_.dofs.free_count);
+    return solver_.solve(lambda, state_);
+  });
   state_lambda_ = lambda;
   state_current_ = true;
   path_current_ = false;
@@ -67,7 +98,7 @@ Vector FractureContinuation::free_state(double lambda) {
 
 const AffinePath& FractureContinuation::current_path(double lambda) {
   if (!path_current_) {
-    path_ = solver_.checked_affine_path(lambda);
+    path_ = holding_singular(lambda, [&] { return solver_.checked_affine_path(lambda); });
     path_current_ = true;
   }
   return path_;
@@ -79,7 +110,7 @@ void FractureContinuation::resolve(double lambda) {
     path_current_ = false;
     return;
   }
-  state_ = solver_.checked_solve(lambda);
+  state_ = holding_singular(lambda, [&] { return solver_.checked_solve(lambda); });
   state_lambda_ = lambda;
   state_current_ = true;
   path_current_ = false;

@@ -37,6 +37,7 @@ struct EquilibriumSolver::Kinsol {
   SUNLinearSolver linear_solver = nullptr;
   double lambda = 0;
   std::string last_message;
+  long long singular_unknown = -1;  // set when a factorization found no stiffness
 
   static int residual(N_Vector u, N_Vector f, void* data) {
     auto* k = static_cast<Kinsol*>(data);
@@ -55,9 +56,13 @@ struct EquilibriumSolver::Kinsol {
     EquilibriumSolver& s = *k->owner;
     try {
       s.factor_.factorize(s.stiffness_);
+    } catch (const SingularStiffness& e) {
+      k->last_message = e.what();
+      k->singular_unknown = e.unknown();
+      return -1;  // unrecoverable
     } catch (const Error& e) {
       k->last_message = e.what();
-      return -1;  // unrecoverable
+      return -1;
     }
     ++s.counters_.factorizations;
     s.factor_current_ = true;
@@ -304,6 +309,7 @@ EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacem
   Kinsol& k = *kinsol_;
   k.lambda = lambda;
   k.last_message.clear();
+  k.singular_unknown = -1;
   as_vector(k.unknowns) = free_displacement;
   N_VConst(1.0 / load, k.residual_scale);
   check_flag(KINSetFuncNormTol(k.memory, options_.tolerance), "KINSetFuncNormTol");
@@ -320,6 +326,7 @@ EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacem
   if (flag < 0) {
     std::string message = std::string("KINSol failed (") + flag_name(flag) + ")";
     if (!k.last_message.empty()) message += ": " + k.last_message;
+    if (k.singular_unknown >= 0) throw SingularStiffness(message, k.singular_unknown);
     throw Error(message);
   }
   free_displacement = as_vector(k.unknowns);

@@ -25,8 +25,9 @@ class CholeskyFactor {
 
   // Fill-reducing ordering and symbolic factorization of the pattern.
   void analyze(StiffnessMatrix& matrix);
-  // Numeric factorization (analyzes first if needed). Throws Error when the matrix is not
-  // positive definite: a rigid-body motion or a part of the body without support.
+  // Numeric factorization (analyzes first if needed). Throws SingularStiffness, naming the
+  // column where it showed, when the matrix is not positive definite or singular to
+  // working precision: a rigid-body motion or a part of the body without support.
   void factorize(StiffnessMatrix& matrix);
   // Solves K X = B for `columns` right-hand sides stored column after column, in place.
   void solve(double* rhs, std::int64_t rows, int columns);
@@ -47,6 +48,7 @@ class CholeskyFactor {
 
  private:
   struct State;
+  std::int64_t smallest_pivot_column() const;
   std::unique_ptr<State> state_;
   std::vector<std::int64_t> inverse_permutation_;
   bool factorized_ = false;

@@ -48,6 +48,9 @@ class FractureContinuation {
   // The full displacement at lambda: from the state of the current cascade when lambda
   // is its lambda, from the affine path otherwise.
   Vector displacement(double lambda);
+  // Runs `solve`; where a factorization finds no stiffness, holds that node and retries.
+  template <typename Solve>
+  auto holding_singular(double lambda, Solve solve);
   // The free displacement at lambda, whichever way the state is computed.
   Vector free_state(double lambda);
   // The affine path of the current stiffness (solved, residual checked, when stale).

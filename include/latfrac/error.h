@@ -20,4 +20,16 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The stiffness matrix has no stiffness along some motion: a factorization met a zero or
+// negligible pivot. `unknown` is the free degree of freedom where it showed (-1 unknown),
+// so that a caller can hold it and try again (docs/robustness.md).
+class SingularStiffness : public Error {
+ public:
+  SingularStiffness(const std::string& message, long long unknown) : Error(message), unknown_(unknown) {}
+  long long unknown() const { return unknown_; }
+
+ private:
+  long long unknown_;
+};
+
 }  // namespace latfrac
