@@ -6,8 +6,6 @@
 //   build/bench/bench_breaking              # 2-D 100k and 3-D 50k nodes
 //   build/bench/bench_breaking 3 10000      # one case: dim and approximate node count
 //   build/bench/bench_breaking 2 100000 nesdis   # ... and the fill-reducing ordering
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -15,6 +13,7 @@
 #include <random>
 #include <string>
 
+#include "bench_cases.h"
 #include "latfrac/equilibrium.h"
 #include "latfrac/fracture.h"
 #include "latfrac/fragments.h"
@@ -125,20 +124,7 @@ int main(int argc, char** argv) {
   const Ordering ordering = name == "nesdis" ? Ordering::nesdis
                             : name == "amd"  ? Ordering::amd
                                              : Ordering::metis;
-  for (const auto& [dim, nodes] : cases) {
-    const pid_t child = fork();
-    if (child == 0) {
-      try {
-        run_case(dim, nodes, ordering);
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "bench: %s\n", e.what());
-        _exit(1);
-      }
-      _exit(0);
-    }
-    int status = 0;
-    waitpid(child, &status, 0);
-  }
+  bench::run_each_in_child(cases, [&](int dim, long nodes) { run_case(dim, nodes, ordering); });
   std::printf(
       "\nper break = factor downdate + re-solve at lambda with its residual check "
       "+ criterion of every bond; refactorize = assembly + numeric factorization + solve.\n");

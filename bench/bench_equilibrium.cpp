@@ -4,14 +4,13 @@
 //   build/bench/bench_equilibrium            # the three standard cases
 //   build/bench/bench_equilibrium 2 100000   # one case: dim and approximate node count
 #include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
+#include "bench_cases.h"
 #include "latfrac/equilibrium.h"
 
 using namespace latfrac;
@@ -104,21 +103,7 @@ int main(int argc, char** argv) {
   std::fflush(stdout);
   std::vector<std::pair<int, long>> cases = {{2, 100000}, {3, 10000}, {3, 50000}};
   if (argc == 3) cases = {{std::stoi(argv[1]), std::stol(argv[2])}};
-  for (const auto& [dim, nodes] : cases) {
-    // A child per case, so that the peak memory is the case's own.
-    const pid_t child = fork();
-    if (child == 0) {
-      try {
-        run_case(dim, nodes);
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "bench: %s\n", e.what());
-        _exit(1);
-      }
-      _exit(0);
-    }
-    int status = 0;
-    waitpid(child, &status, 0);
-  }
+  bench::run_each_in_child(cases, [&](int dim, long nodes) { run_case(dim, nodes); });
   std::printf(
       "\nKINSOL vs bare: KINSOL's Newton solve against assemble + analyze + factorize + solve.\n");
   return 0;

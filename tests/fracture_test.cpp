@@ -7,6 +7,7 @@
 #include "latfrac/equilibrium.h"
 #include "latfrac/fragments.h"
 #include "latfrac/run.h"
+#include "random_breaks.h"
 #include "scenes.h"
 
 using namespace latfrac;
@@ -72,21 +73,7 @@ TEST_CASE("After 100 random breaks the updated factor solves like a fresh factor
   Model model = build_model(scene);
   EquilibriumSolver solver(model, scene.solver);
   solver.affine_path();
-  const FragmentDetector fragments(model);
-  std::mt19937_64 random(42);
-  std::uniform_int_distribution<std::int64_t> pick(0, model.lattice.bond_count() - 1);
-  int broken = 0;
-  while (broken < 100) {
-    const std::int64_t bond = pick(random);
-    if (!model.intact[bond]) continue;
-    model.intact[bond] = 0;
-    if (!fragments.unsupported_after_break(model, bond).empty()) {
-      model.intact[bond] = 1;  // keep the body supported: this test is about the factor
-      continue;
-    }
-    solver.remove_bond(bond);
-    ++broken;
-  }
+  testing::break_random_bonds(model, solver, 100, 42);
   CHECK(solver.counters().factor_updates == 100);
   CHECK(solver.counters().factorizations == 1);
   const AffinePath updated = solver.affine_path();

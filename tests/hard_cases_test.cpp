@@ -14,6 +14,7 @@
 #include "latfrac/fragments.h"
 #include "latfrac/node_stress.h"
 #include "latfrac/run.h"
+#include "random_breaks.h"
 #include "scenes.h"
 
 using namespace latfrac;
@@ -491,21 +492,7 @@ TEST_CASE(
   REQUIRE(model.lattice.node_count() > 2000);
   EquilibriumSolver solver(model, scene.solver);
   solver.affine_path();
-  const FragmentDetector fragments(model);
-  std::mt19937_64 random(7);
-  std::uniform_int_distribution<std::int64_t> pick(0, model.lattice.bond_count() - 1);
-  int broken = 0;
-  while (broken < target) {
-    const std::int64_t bond = pick(random);
-    if (!model.intact[bond]) continue;
-    model.intact[bond] = 0;
-    if (!fragments.unsupported_after_break(model, bond).empty()) {
-      model.intact[bond] = 1;
-      continue;
-    }
-    solver.remove_bond(bond);
-    ++broken;
-  }
+  testing::break_random_bonds(model, solver, target, 7);
   CHECK(solver.counters().factor_updates == target);
   const AffinePath updated = solver.affine_path();
   CHECK(solver.counters().factorizations == 1);  // the comparison really used the updated factor
@@ -598,7 +585,8 @@ Scene contact_scene(Criterion criterion, double sigma0, double tau0_factor, doub
   scene.strength->friction_angle = 30.0;
   scene.strength->tau0_factor = tau0_factor;
   scene.contact = Contact{};
-  for (const auto& c : cuts) scene.precuts.push_back({{c[0], 0, c[1]}, {c[2], 0, c[3]}, {}, {}, {}});
+  for (const auto& c : cuts)
+    scene.precuts.push_back({{c[0], 0, c[1]}, {c[2], 0, c[3]}, {}, {}, {}});
   scene.loading.total = total;
   scene.stepping = {SteppingMethod::fixed, 1e-4};
   return scene;
@@ -609,10 +597,10 @@ Scene contact_scene(Criterion criterion, double sigma0, double tau0_factor, doub
 TEST_CASE("Hard: contact chattering is detected and resolved by the cycle rule", "[hard]") {
   // Found by a search over random contact scenes: pressing two crossing cuts makes the
   // active-set iteration revisit a set of closed contacts.
-  const Scene scene = contact_scene(Criterion::tensile_or_shear, 808253.16798531474, 2.3207014197303737,
-                                    -0.00096172901921124938,
-                                    {{9.620167785408702, 4.2917322711025303, 9.1886631110060275, 6.378655628984923},
-                                     {2.7951068183459311, 2.5392374725946341, 6.9137162397848968, 7.5523618585338728}});
+  const Scene scene = contact_scene(
+      Criterion::tensile_or_shear, 808253.16798531474, 2.3207014197303737, -0.00096172901921124938,
+      {{9.620167785408702, 4.2917322711025303, 9.1886631110060275, 6.378655628984923},
+       {2.7951068183459311, 2.5392374725946341, 6.9137162397848968, 7.5523618585338728}});
   const RunResult result = run_scene(scene, quiet());
   CHECK(result.summary.contact_cycles >= 1);
   CHECK(snapshots_finite(result));
@@ -683,20 +671,7 @@ TEST_CASE("Hard: updates fall back to a fresh factorization when the residual ch
   Model model = build_model(scene);
   EquilibriumSolver solver(model, scene.solver);
   solver.affine_path();
-  const FragmentDetector fragments(model);
-  std::mt19937_64 random(3);
-  std::uniform_int_distribution<std::int64_t> pick(0, model.lattice.bond_count() - 1);
-  for (int broken = 0; broken < 50;) {
-    const std::int64_t bond = pick(random);
-    if (!model.intact[bond]) continue;
-    model.intact[bond] = 0;
-    if (!fragments.unsupported_after_break(model, bond).empty()) {
-      model.intact[bond] = 1;
-      continue;
-    }
-    solver.remove_bond(bond);
-    ++broken;
-  }
+  testing::break_random_bonds(model, solver, 50, 3);
   REQUIRE(solver.counters().factorizations == 1);
   if (tolerance > 1e-15) {
     const Vector u = solver.checked_solve(1e-3);  // the updated factor suffices
