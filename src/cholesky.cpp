@@ -276,8 +276,4 @@ std::int64_t CholeskyFactor::factor_nonzeros() const {
   return static_cast<std::int64_t>(state_->common.lnz);
 }
 
-std::int64_t CholeskyFactor::peak_memory() const {
-  return static_cast<std::int64_t>(state_->common.memory_usage);
-}
-
 }  // namespace latfrac

@@ -170,20 +170,4 @@ Lattice build_lattice(const LatticeSpec& spec) {
   return lattice;
 }
 
-LatticeCount count_lattice(const LatticeSpec& spec) {
-  validate(spec);
-  const Grid grid = grid_of(spec);
-  const double rows = grid.intervals_z + 1.0;
-  const double per_row = grid.intervals_x + 0.5;
-  LatticeCount count;
-  if (spec.dim == 2) {
-    count.nodes = static_cast<std::int64_t>(rows * per_row);
-    count.bonds = 3 * count.nodes;
-  } else {
-    count.nodes = static_cast<std::int64_t>(rows * (grid.intervals_y + 1.0) * per_row);
-    count.bonds = (spec.next_nearest ? 9 : 6) * count.nodes;
-  }
-  return count;
-}
-
 }  // namespace latfrac

@@ -12,8 +12,8 @@ namespace latfrac {
 
 SizeEstimate estimate_size(const Scene& scene) {
   const LatticeSpec& spec = scene.lattice;
-  // Counted in floating point from the geometry (count_lattice's integers would overflow
-  // for an absurd scene).
+  // Counted in floating point from the geometry, so that an absurd scene cannot overflow
+  // an integer.
   const double a = spec.spacing;
   const double rows =
       spec.size[2] / (spec.dim == 2 ? std::sqrt(3.0) / 2 * a : std::sqrt(2.0 / 3.0) * a) + 1;

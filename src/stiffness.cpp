@@ -78,16 +78,4 @@ void StiffnessMatrix::assemble(const Model& model, const Vector& displacement) {
   }
 }
 
-Vector StiffnessMatrix::multiply(const Vector& x) const {
-  Vector y = Vector::Zero(size());
-  for (std::int64_t column = 0; column < size(); ++column) {
-    for (std::int64_t k = column_start_[column]; k < column_start_[column + 1]; ++k) {
-      const std::int64_t row = row_index_[k];
-      y[row] += values_[k] * x[column];
-      if (row != column) y[column] += values_[k] * x[row];
-    }
-  }
-  return y;
-}
-
 }  // namespace latfrac

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "final_state.h"
 #include "latfrac/equilibrium.h"
 #include "latfrac/fragments.h"
 #include "latfrac/run.h"
@@ -13,6 +14,9 @@
 using namespace latfrac;
 
 namespace {
+
+using testing::final_state;
+using testing::FinalState;
 
 Scene fracture_scene(Criterion criterion, double sigma0) {
   Scene scene = testing::box_scene(2, 1.0, {20.0, 0, 10.0}, false);
@@ -27,31 +31,6 @@ Scene fracture_scene(Criterion criterion, double sigma0) {
 
 double relative_difference(const Vector& a, const Vector& b) {
   return (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();
-}
-
-// The model of a finished run in its final state, with contacts set from the displacement.
-struct FinalState {
-  Model model;
-  Vector displacement;
-};
-
-FinalState final_state(const Scene& scene, const RunResult& result) {
-  FinalState state{build_model(scene), {}};
-  const Snapshot& last = result.snapshots.back();
-  state.model.intact = last.bond_intact;
-  const int dim = state.model.dim();
-  const std::vector<int> axes = state.model.lattice.axes();
-  state.displacement.resize(state.model.dofs.dof_count());
-  for (std::int64_t n = 0; n < state.model.lattice.node_count(); ++n) {
-    for (int c = 0; c < dim; ++c)
-      state.displacement[n * dim + c] = last.displacement[3 * n + axes[c]];
-  }
-  for (std::int64_t b = 0; b < state.model.lattice.bond_count(); ++b) {
-    const double dn = state.model.lattice.bond_direction[b].dot(
-        state.model.bond_displacement(state.displacement, b));
-    state.model.contact_active[b] = state.model.contact_capable(b) && dn < 0;
-  }
-  return state;
 }
 
 double wall_reaction(const FinalState& state, Face face) {

@@ -10,6 +10,7 @@
 #include <random>
 #include <set>
 
+#include "final_state.h"
 #include "latfrac/equilibrium.h"
 #include "latfrac/fragments.h"
 #include "latfrac/node_stress.h"
@@ -20,6 +21,9 @@
 using namespace latfrac;
 
 namespace {
+
+using testing::final_state;
+using testing::FinalState;
 
 RunOptions quiet() {
   RunOptions options;
@@ -46,28 +50,6 @@ Strength strength_of(Criterion criterion, double sigma0, double friction_angle =
   strength.sigma0 = sigma0;
   strength.friction_angle = friction_angle;
   return strength;
-}
-
-// A fresh model with the final snapshot's intact bonds and displacement (no contact).
-struct FinalState {
-  Model model;
-  Vector displacement;
-  double lambda = 0;
-};
-
-FinalState final_state(const Scene& scene, const RunResult& result) {
-  FinalState state{build_model(scene), {}, 0};
-  const Snapshot& last = result.snapshots.back();
-  state.lambda = last.lambda;
-  state.model.intact = last.bond_intact;
-  const int dim = state.model.dim();
-  const std::vector<int> axes = state.model.lattice.axes();
-  state.displacement.resize(state.model.dofs.dof_count());
-  for (std::int64_t n = 0; n < state.model.lattice.node_count(); ++n) {
-    for (int c = 0; c < dim; ++c)
-      state.displacement[n * dim + c] = last.displacement[3 * n + axes[c]];
-  }
-  return state;
 }
 
 // Equilibrium of a final state, part by part. The connected parts (intact bonds) are found

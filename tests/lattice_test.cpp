@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "latfrac/error.h"
+#include "latfrac/size_estimate.h"
 
 using namespace latfrac;
 
@@ -74,9 +75,14 @@ TEST_CASE("3-D HCP lattice: 12 nearest neighbours at a and 6 next-nearest at sqr
     CHECK(lattice.bond_length[b] == Approx(expected).epsilon(1e-12));
   }
   CHECK(lattice.node_volume == Approx(1 / std::sqrt(2.0)));
-  // The lattice's density matches V0: nodes per volume of the interior.
-  const auto counted = count_lattice(spec);
-  CHECK(std::abs(counted.nodes - lattice.node_count()) < 0.1 * lattice.node_count());
+  // The size estimate that `latfrac check` prints (and `run` uses to refuse problems too
+  // large for memory) is close to the lattice actually built.
+  Scene scene;
+  scene.lattice = spec;
+  const SizeEstimate estimate = estimate_size(scene);
+  CHECK(std::abs(estimate.nodes - lattice.node_count()) < 0.1 * lattice.node_count());
+  // Bonds are counted at the interior's 9 per node: never fewer than the lattice has.
+  CHECK(estimate.bonds >= lattice.bond_count());
 }
 
 TEST_CASE("Lattices that cannot be built are rejected with a message naming the key", "[lattice]") {

@@ -43,8 +43,6 @@ class CholeskyFactor {
   bool analyzed() const;
   bool factorized() const { return factorized_; }
   std::int64_t factor_nonzeros() const;
-  // CHOLMOD's own peak memory use, bytes.
-  std::int64_t peak_memory() const;
 
  private:
   struct State;

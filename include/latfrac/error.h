@@ -25,7 +25,8 @@ class Error : public std::runtime_error {
 // so that a caller can hold it and try again (docs/robustness.md).
 class SingularStiffness : public Error {
  public:
-  SingularStiffness(const std::string& message, long long unknown) : Error(message), unknown_(unknown) {}
+  SingularStiffness(const std::string& message, long long unknown)
+      : Error(message), unknown_(unknown) {}
   long long unknown() const { return unknown_; }
 
  private:

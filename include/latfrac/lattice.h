@@ -59,10 +59,4 @@ class Lattice {
 // box smaller than two spacings along an axis, or a dimension other than 2 or 3.
 Lattice build_lattice(const LatticeSpec& spec);
 
-// Number of nodes and bonds build_lattice would make, without building it.
-struct LatticeCount {
-  std::int64_t nodes = 0, bonds = 0;
-};
-LatticeCount count_lattice(const LatticeSpec& spec);
-
 }  // namespace latfrac

@@ -24,8 +24,6 @@ class StiffnessMatrix {
 
   std::int64_t size() const { return static_cast<std::int64_t>(column_start_.size()) - 1; }
   std::int64_t nonzeros() const { return static_cast<std::int64_t>(row_index_.size()); }
-  // y = K x (K symmetric; only the upper triangle is stored).
-  Vector multiply(const Vector& x) const;
 
   std::vector<std::int64_t>& column_start() { return column_start_; }
   std::vector<std::int64_t>& row_index() { return row_index_; }

@@ -1,0 +1,38 @@
+// Test helper: the model of a finished run rebuilt in its final state, to check it
+// independently of the run (residuals, reactions, contact forces).
+#pragma once
+
+#include "latfrac/model.h"
+#include "latfrac/run_result.h"
+
+namespace latfrac::testing {
+
+// A fresh model of the scene with the last snapshot's intact bonds, its displacement on
+// every dof, and contacts closed where the displacement presses them (dn < 0).
+struct FinalState {
+  Model model;
+  Vector displacement;
+  double lambda = 0;
+};
+
+inline FinalState final_state(const Scene& scene, const RunResult& result) {
+  FinalState state{build_model(scene), {}, 0};
+  const Snapshot& last = result.snapshots.back();
+  state.lambda = last.lambda;
+  state.model.intact = last.bond_intact;
+  const int dim = state.model.dim();
+  const std::vector<int> axes = state.model.lattice.axes();
+  state.displacement.resize(state.model.dofs.dof_count());
+  for (std::int64_t n = 0; n < state.model.lattice.node_count(); ++n) {
+    for (int c = 0; c < dim; ++c)
+      state.displacement[n * dim + c] = last.displacement[3 * n + axes[c]];
+  }
+  for (std::int64_t b = 0; b < state.model.lattice.bond_count(); ++b) {
+    const double dn = state.model.lattice.bond_direction[b].dot(
+        state.model.bond_displacement(state.displacement, b));
+    state.model.contact_active[b] = state.model.contact_capable(b) && dn < 0;
+  }
+  return state;
+}
+
+}  // namespace latfrac::testing
