@@ -95,6 +95,17 @@ FailureIndex failure_index(Criterion criterion, double sigma_n, double tau, doub
       "failure_index: drucker_prager needs the bond's stress tensor (drucker_prager_index)");
 }
 
+ResolvedStress resolve_on(const VoigtStress& s, const Eigen::Vector3d& n) {
+  // Voigt xx, yy, zz, yz, xz, xy.
+  const Eigen::Vector3d traction(s[0] * n.x() + s[5] * n.y() + s[4] * n.z(),
+                                 s[5] * n.x() + s[1] * n.y() + s[3] * n.z(),
+                                 s[4] * n.x() + s[3] * n.y() + s[2] * n.z());
+  ResolvedStress r;
+  r.normal = n.dot(traction);
+  r.shear = traction - r.normal * n;
+  return r;
+}
+
 double first_invariant(const VoigtStress& s) { return s[0] + s[1] + s[2]; }
 
 double j2_product(const VoigtStress& a, const VoigtStress& b) {

@@ -21,13 +21,6 @@ FullPath full_path(const Model& model, const AffinePath& path) {
   return full;
 }
 
-std::array<double, 6> bond_stress(const std::vector<double>& node_stress, const Bond& bond) {
-  std::array<double, 6> s{};
-  for (int k = 0; k < 6; ++k)
-    s[k] = 0.5 * (node_stress[6 * bond.i + k] + node_stress[6 * bond.j + k]);
-  return s;
-}
-
 }  // namespace
 
 PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
@@ -38,7 +31,7 @@ PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
   const CriterionParameters& criterion = evaluator.parameters();
   const bool drucker_prager = criterion.criterion == Criterion::drucker_prager;
   std::vector<double> stress0, stress1;
-  if (drucker_prager) {
+  if (evaluator.uses_tensor()) {
     stress0 = node_stresses(model, full.at_zero);
     stress1 = node_stresses(model, full.at_zero + full.per_lambda);
     for (std::size_t k = 0; k < stress1.size(); ++k) stress1[k] -= stress0[k];
@@ -50,11 +43,22 @@ PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
     double s;
     if (drucker_prager) {
       const Bond& bond = model.lattice.bonds[b];
-      std::array<double, 6> s0 = bond_stress(stress0, bond), s1 = bond_stress(stress1, bond);
+      VoigtStress s0 = bond_stress_tensor(stress0, bond), s1 = bond_stress_tensor(stress1, bond);
       for (double& value : s1) value *= sign;
       s = first_crossing_drucker_prager(s0, s1, criterion.dp_alpha,
                                         criterion.dp_k_per_cohesion * model.bond_tau0[b], s_from,
                                         s_to);
+    } else if (evaluator.uses_tensor()) {
+      // The resolved stresses are linear in the tensor, so affine in lambda with it.
+      const Bond& bond = model.lattice.bonds[b];
+      const Vec3& n0 = model.lattice.bond_direction[b];
+      VoigtStress s1 = bond_stress_tensor(stress1, bond);
+      for (double& value : s1) value *= sign;
+      const ResolvedStress r0 = resolve_on(bond_stress_tensor(stress0, bond), n0);
+      const ResolvedStress r1 = resolve_on(s1, n0);
+      const AffineBondStress affine{r0.normal, r1.normal, r0.shear, r1.shear};
+      s = first_crossing(criterion.criterion, affine, model.bond_sigma0[b], model.bond_tau0[b],
+                         s_from, s_to);
     } else {
       const Vec3& n0 = model.lattice.bond_direction[b];
       const double length = model.lattice.bond_length[b];

@@ -8,7 +8,9 @@
 namespace latfrac {
 
 FailureEvaluator::FailureEvaluator(const Strength& strength, const Model& model)
-    : parameters_(resolve_criterion(strength, model.dim())) {
+    : parameters_(resolve_criterion(strength, model.dim())),
+      uses_tensor_(parameters_.criterion == Criterion::drucker_prager ||
+                   strength.bond_stress == BondStress::tensor) {
   const std::int64_t bonds = model.lattice.bond_count();
   normal_scale_.resize(bonds);
   shear_scale_.resize(bonds);
@@ -19,16 +21,24 @@ FailureEvaluator::FailureEvaluator(const Strength& strength, const Model& model)
   }
 }
 
+VoigtStress bond_stress_tensor(const std::vector<double>& node_stress, const Bond& bond) {
+  VoigtStress s{};
+  for (int k = 0; k < 6; ++k)
+    s[k] = 0.5 * (node_stress[6 * bond.i + k] + node_stress[6 * bond.j + k]);
+  return s;
+}
+
 FailureIndex FailureEvaluator::bond_index(const Model& model, const Vector& displacement,
                                           std::int64_t bond,
                                           const std::vector<double>& node_stress) const {
-  if (parameters_.criterion == Criterion::drucker_prager) {
-    const Bond& pair = model.lattice.bonds[bond];
-    std::array<double, 6> stress{};
-    for (int k = 0; k < 6; ++k)
-      stress[k] = 0.5 * (node_stress[6 * pair.i + k] + node_stress[6 * pair.j + k]);
-    return drucker_prager_index(stress, parameters_.dp_alpha,
-                                parameters_.dp_k_per_cohesion * model.bond_tau0[bond]);
+  if (uses_tensor_) {
+    const VoigtStress stress = bond_stress_tensor(node_stress, model.lattice.bonds[bond]);
+    if (parameters_.criterion == Criterion::drucker_prager)
+      return drucker_prager_index(stress, parameters_.dp_alpha,
+                                  parameters_.dp_k_per_cohesion * model.bond_tau0[bond]);
+    const ResolvedStress r = resolve_on(stress, model.lattice.bond_direction[bond]);
+    return failure_index(parameters_.criterion, r.normal, r.shear.norm(),
+                         model.bond_sigma0[bond], model.bond_tau0[bond]);
   }
   // The bond law's own normal and shear displacement (the current direction under large
   // kinematics).
@@ -47,8 +57,7 @@ void FailureEvaluator::evaluate(const Model& model, const Vector& displacement,
   index.assign(bonds, 0.0);
   mode.assign(bonds, BreakMode::tensile);
   std::vector<double> node_stress;
-  if (parameters_.criterion == Criterion::drucker_prager)
-    node_stress = node_stresses(model, displacement);
+  if (uses_tensor_) node_stress = node_stresses(model, displacement);
   for (std::int64_t b = 0; b < bonds; ++b) {
     if (!model.intact[b]) continue;
     const FailureIndex f = bond_index(model, displacement, b, node_stress);
@@ -63,7 +72,7 @@ void FailureEvaluator::evaluate(const Model& model, const Vector& displacement,
 double FailureEvaluator::rank(const Model& model, const Vector& displacement, std::int64_t b,
                               const std::vector<double>& node_stress) const {
   const Criterion criterion = parameters_.criterion;
-  if (criterion == Criterion::drucker_prager || !model.law->is_linear()) {
+  if (uses_tensor_ || !model.law->is_linear()) {
     return bond_index(model, displacement, b, node_stress).value;
   }
   const Vec3& n0 = model.lattice.bond_direction[b];
@@ -80,7 +89,7 @@ double FailureEvaluator::rank(const Model& model, const Vector& displacement, st
 double FailureEvaluator::rank_tolerance() const {
   // The squared ratio of tensile_or_shear doubles the relative spread; a margin of two
   // more keeps every tied bond among the candidates (the exact f decides). The exact f
-  // is the rank itself for Drucker-Prager and for a nonlinear law.
+  // is the rank itself on the stress tensor and for a nonlinear law.
   return 4 * tie_tolerance;
 }
 
@@ -93,8 +102,7 @@ std::vector<CriticalBond> FailureEvaluator::critical_group(const Model& model,
                                                            const Vector& displacement,
                                                            double threshold) const {
   std::vector<double> node_stress;
-  if (parameters_.criterion == Criterion::drucker_prager)
-    node_stress = node_stresses(model, displacement);
+  if (uses_tensor_) node_stress = node_stresses(model, displacement);
   const double tolerance = rank_tolerance();
   double best = 0;
   std::vector<std::int64_t> candidates;

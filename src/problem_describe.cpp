@@ -66,6 +66,12 @@ void describe_strength(const Strength& strength, Listing& out) {
     out.entry("tau0", "not given (not used by this criterion)");
   }
   out.entry("tau0_factor", strength.tau0_factor);
+  out.entry("bond_stress", to_string(strength.bond_stress),
+            strength.criterion == Criterion::drucker_prager
+                ? "(not used: drucker_prager always uses the stress tensor)"
+                : strength.bond_stress == BondStress::strain
+                      ? "(sigma_n = E eps_n, tau = G gamma)"
+                      : "(the bond's stress tensor resolved on its direction)");
 }
 
 void describe_solver(const SolverOptions& solver, Listing& out) {

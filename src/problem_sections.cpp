@@ -112,7 +112,8 @@ void read_boundary(const Section& top, int dim, Scene& scene) {
 
 std::optional<Strength> read_strength(const Section& top) {
   const std::optional<Section> s =
-      top.section("strength", {"criterion", "sigma0", "tau0", "friction_angle", "tau0_factor"});
+      top.section("strength", {"criterion", "sigma0", "tau0", "friction_angle", "tau0_factor",
+                              "bond_stress"});
   if (!s) return std::nullopt;
   const std::vector<std::string_view> criteria = {"tensile", "tensile_or_shear", "elliptic",
                                                   "drucker_prager"};
@@ -122,6 +123,8 @@ std::optional<Strength> read_strength(const Section& top) {
   strength.tau0 = s->number("tau0", positive("Pa"));
   strength.friction_angle = s->number("friction_angle", {0, 90, false, true, "degrees"});
   strength.tau0_factor = s->number("tau0_factor", positive(), 1.0);
+  if (const auto source = s->choice("bond_stress", {"strain", "tensor"}))
+    strength.bond_stress = static_cast<BondStress>(*source);
 
   const std::string criterion = name_of(to_string(strength.criterion));
   if (strength.tau0 && strength.tau0_factor != 1) {

@@ -17,6 +17,10 @@ const char* to_string(Criterion criterion) {
   return "unknown";
 }
 
+const char* to_string(BondStress source) {
+  return source == BondStress::strain ? "strain" : "tensor";
+}
+
 const char* to_string(FaceCondition condition) {
   switch (condition) {
     case FaceCondition::free:

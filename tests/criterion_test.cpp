@@ -54,6 +54,22 @@ TEST_CASE("compression never drives failure", "[criterion]") {
   CHECK(ellipse.mode == BreakMode::shear);
 }
 
+TEST_CASE("a stress tensor resolved on a bond direction matches Mohr's circle", "[criterion]") {
+  // sigma_xx = 20 MPa, sigma_zz = -60 MPa, no shear; a bond at 60 degrees from x in the
+  // x-z plane: sigma_n = xx cos^2 + zz sin^2 = 5 - 45 = -40 MPa, and
+  // tau = |xx - zz| sin cos = 80 (sqrt3 / 4) = 34.64 MPa. sigma_yy plays no part.
+  const VoigtStress stress{20 * MPa, 99 * MPa, -60 * MPa, 0, 0, 0};
+  const Eigen::Vector3d n(0.5, 0, sqrt3 / 2);
+  const ResolvedStress r = resolve_on(stress, n);
+  CHECK(r.normal == Approx(-40 * MPa));
+  CHECK(r.shear.norm() == Approx(20 * sqrt3 * MPa));
+  CHECK(std::abs(r.shear.dot(n)) < 1e-9 * MPa);
+  // Pure shear sigma_xz = 30 MPa on a horizontal bond: no normal stress, tau = 30 MPa along z.
+  const ResolvedStress pure = resolve_on({0, 0, 0, 0, 30 * MPa, 0}, Eigen::Vector3d(1, 0, 0));
+  CHECK(pure.normal == 0);
+  CHECK(pure.shear.z() == Approx(30 * MPa));
+}
+
 TEST_CASE("failure_index accepts an infinite tau0 and refuses Drucker-Prager", "[criterion]") {
   const double inf = std::numeric_limits<double>::infinity();
   CHECK(failure_index(Criterion::elliptic, 25 * MPa, 1e9, 50 * MPa, inf).value == Approx(0.25));

@@ -74,6 +74,23 @@ TEST_CASE("Event-driven breaking finds the analytic first break to 1e-12", "[con
   CHECK(fixed.events.front().lambda < 5e-4 + ds);
 }
 
+TEST_CASE("With bond_stress = tensor the first tensile break is at sigma0 / M", "[continuation]") {
+  // Rollers on top and base hold eps_zz = 0: uniaxial strain eps_xx = lambda, so the
+  // interior stress is sigma_xx = M lambda with the P-wave modulus
+  // M = E (1 - nu) / ((1 + nu)(1 - 2 nu)), and a horizontal bond's resolved sigma_n is
+  // sigma_xx. Its own strain would give E lambda instead (the previous test).
+  Scene scene = strip_scene(Criterion::tensile);
+  scene.strength->bond_stress = BondStress::tensor;
+  scene.faces[static_cast<int>(Face::z_max)] = FaceCondition::roller;
+  scene.loading.total = 1e-3;
+  const RunResult event = run_scene(scene, {});
+  REQUIRE(!event.events.empty());
+  const double E = scene.material.young, nu = scene.material.poisson;
+  const double M = E * (1 - nu) / ((1 + nu) * (1 - 2 * nu));
+  CHECK(event.events.front().lambda == Approx(scene.strength->sigma0 / M).epsilon(1e-9));
+  CHECK(event.events.front().failure_index == Approx(1.0).epsilon(1e-12));
+}
+
 TEST_CASE("The event-driven result depends on no stepping parameter", "[continuation]") {
   Scene scene = notched_scene();
   const RunResult reference = run_scene(scene, {});
@@ -90,6 +107,8 @@ TEST_CASE("The event-driven result depends on no stepping parameter", "[continua
 
 TEST_CASE("Fixed-step runs converge to the event-driven result as ds shrinks", "[continuation]") {
   Scene scene = notched_scene();
+  // Both ways of taking a bond's stress: its own strain, and the resolved stress tensor.
+  scene.strength->bond_stress = GENERATE(BondStress::strain, BondStress::tensor);
   const std::set<std::int64_t> reference = broken_set(run_scene(scene, {}));
   std::vector<double> differences;
   for (double ds : {1e-4, 1e-5, 1e-6}) {

@@ -11,6 +11,7 @@
 // when the mean-stress term alpha I1 is at least sqrt(J2).
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
 
@@ -67,6 +68,14 @@ FailureIndex failure_index(Criterion criterion, double sigma_n, double tau, doub
 // Drucker-Prager on the bond's stress tensor; in 2-D, yy is already nu (xx + zz).
 // k = k_per_cohesion * c.
 FailureIndex drucker_prager_index(const VoigtStress& stress, double alpha, double k);
+
+// A stress tensor resolved on the unit direction n: the normal stress n.S.n and the shear
+// traction vector S n - (n.S.n) n (Pa, tension positive). Linear in S.
+struct ResolvedStress {
+  double normal = 0;
+  Eigen::Vector3d shear = Eigen::Vector3d::Zero();
+};
+ResolvedStress resolve_on(const VoigtStress& stress, const Eigen::Vector3d& n);
 
 // I1 = trace.
 double first_invariant(const VoigtStress& stress);

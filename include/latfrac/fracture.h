@@ -1,9 +1,10 @@
 // Failure indices of every intact bond: which bond breaks next, and how.
 //
 // A bond's normal and shear stresses come from its strains and its layer's moduli,
-// sigma_n = E dn / L0 and tau = G |ds| / L0 (model.md section 2); Drucker-Prager uses the
-// bond's stress tensor, the mean of its two nodes' virial stresses. The criteria
-// themselves are in criterion.h.
+// sigma_n = E dn / L0 and tau = G |ds| / L0 (model.md section 2), or, with
+// bond_stress = "tensor", from the bond's stress tensor resolved on its direction.
+// Drucker-Prager always uses that tensor, the mean of the two nodes' virial stresses.
+// The criteria themselves are in criterion.h.
 #pragma once
 
 #include <cstdint>
@@ -19,6 +20,9 @@ struct CriticalBond {
   double index = 0;        // its failure index f
   BreakMode mode = BreakMode::tensile;
 };
+
+// The bond's stress tensor: the mean of its two nodes' virial stresses (node_stress.h).
+VoigtStress bond_stress_tensor(const std::vector<double>& node_stress, const Bond& bond);
 
 class FailureEvaluator {
  public:
@@ -38,6 +42,9 @@ class FailureEvaluator {
   static constexpr double tie_tolerance = 1e-12;
 
   const CriterionParameters& parameters() const { return parameters_; }
+  // True when f comes from the bonds' stress tensors (Drucker-Prager, or bond_stress =
+  // "tensor"), which need the node stresses.
+  bool uses_tensor() const { return uses_tensor_; }
 
  private:
   FailureIndex bond_index(const Model& model, const Vector& displacement, std::int64_t bond,
@@ -48,6 +55,7 @@ class FailureEvaluator {
               const std::vector<double>& node_stress) const;
   double rank_tolerance() const;
   CriterionParameters parameters_;
+  bool uses_tensor_ = false;
   // Per bond: E / (L0 sigma0) and G / (L0 tau0), so that the normal and shear ratios are
   // dn times the first and |ds| times the second.
   std::vector<double> normal_scale_, shear_scale_;

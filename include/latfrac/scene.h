@@ -26,6 +26,12 @@ inline constexpr int face_count = 6;
 enum class FaceCondition { free, roller, fixed, extension };
 
 enum class Criterion { tensile, tensile_or_shear, elliptic, drucker_prager };
+// Where a bond's normal and shear stresses come from (docs/criteria.md):
+//   strain: sigma_n = E eps_n, tau = G gamma, from the bond's own strains (model.md section 2)
+//   tensor: the bond's stress tensor (the mean of its nodes' virial stresses) resolved on
+//           the bond direction, sigma_n = n.S.n, tau = |S n - sigma_n n|; this carries the
+//           lithostatic confinement that bond strains miss
+enum class BondStress { strain, tensor };
 enum class SteppingMethod { event, fixed };
 enum class EquilibriumMethod { newton, relaxation };
 enum class Ordering { metis, nesdis, amd };
@@ -49,6 +55,7 @@ struct Strength {
   std::optional<double> tau0;            // shear cohesion, Pa, when given directly
   std::optional<double> friction_angle;  // psi, degrees
   double tau0_factor = 1;                // m in tau0 = m sigma0 (1 + sin psi) / (2 cos psi)
+  BondStress bond_stress = BondStress::strain;  // not used by drucker_prager (always the tensor)
 };
 
 struct Gravity {
@@ -134,6 +141,7 @@ struct Scene {
 };
 
 const char* to_string(Criterion criterion);
+const char* to_string(BondStress source);
 const char* to_string(FaceCondition condition);
 const char* to_string(Face face);
 
