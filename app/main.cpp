@@ -120,14 +120,14 @@ int study_command(const std::string& problem, const std::vector<std::string>& se
   return 0;
 }
 
-int analyze_command(const std::string& path, bool json) {
-  // 1. Read the result; 2. analyse the faults of its last snapshot; 3. print.
+int analyze_command(const std::string& path, bool json, double lambda) {
+  // 1. Read the result; 2. analyse the faults of the chosen snapshot; 3. print.
   const RunResult result = read_result_file(path);
   if (result.snapshots.empty()) {
     std::cout << summary_text(result) << "fault analysis: the result holds no snapshot\n";
     return 0;
   }
-  const FaultReport report = analyze_faults(result, result.snapshots.size() - 1);
+  const FaultReport report = analyze_faults(result, snapshot_nearest(result, lambda));
   if (json) {
     const RunSummary& s = result.summary;
     std::printf(
@@ -211,6 +211,7 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   analyze->add_flag("--json", json, "machine-readable output");
+  analyze->add_option("--lambda", lambda, "the snapshot nearest this lambda (default: the last)");
 
   auto* render = app.add_subcommand("render", "draw a result's cross-section as a PNG");
   render->add_option("result", result_path, "a result file (.h5)")
@@ -238,7 +239,7 @@ int main(int argc, char** argv) {
     if (*study)
       return study_command(problem, sets, increments, out_dir, relaxation, quiet, force,
                            joined(argc, argv));
-    if (*analyze) return analyze_command(result_path, json);
+    if (*analyze) return analyze_command(result_path, json, lambda);
     if (*render) return render_command(result_path, lambda, png, width, exaggeration);
     std::cout << app.help();
     return 2;

@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# Reproduces docs/validation.md: runs the paper's scenes (problems/fig*.toml with the
+# overrides each figure needs), draws each at its first structure and at its end, and
+# prints the table of docs/validation.md with the fault analysis of every run.
+#
+#   bash scripts/validate.sh [build-dir] [figure-dir] [work-dir]
+#
+# build-dir defaults to build/ (the README's build); the pictures go to figure-dir
+# (default docs/figures/validation/, the ones the doc shows), the result files and the
+# fault analyses (JSON) to work-dir (default out/validation/). About a minute on 2 cores.
+set -euo pipefail
+
+here=$(cd "$(dirname "$0")/.." && pwd)
+build=${1:-$here/build}
+figures=${2:-$here/docs/figures/validation}
+out=${3:-$here/out/validation}
+latfrac=$build/latfrac
+problems=$here/problems
+[[ -x $latfrac ]] || { echo "validate.sh: no latfrac binary in $build (build first)" >&2; exit 2; }
+mkdir -p "$out" "$figures"
+
+# The first structure (lambda = 5e-4, one increment before the paper's first step ends)
+# and the paper's final state.
+early=0.0005
+snapshots="output.snapshots=[$early, 0.001, 0.02, 0.04]"
+
+# run ID FILE [--set KEY=VALUE ...]: one scene; pictures and fault analyses in $out/ID*.
+run() {
+  local id=$1 file=$2
+  shift 2
+  rm -rf "${out:?}/$id"
+  local start=$SECONDS
+  "$latfrac" run "$problems/$file" -o "$out/$id" --quiet --set "$snapshots" "$@"
+  local seconds=$((SECONDS - start))
+  local h5
+  h5=$(ls "$out/$id"/*.h5)
+  local last
+  last=$("$latfrac" analyze "$h5" --json | python3 -c 'import json,sys; print(json.load(sys.stdin)["final_lambda"])')
+  for lambda in $early "$last"; do
+    "$latfrac" render "$h5" --lambda "$lambda" -o "$figures/$id-$lambda.png" --width 900 > /dev/null
+    "$latfrac" analyze "$h5" --lambda "$lambda" --json > "$out/$id-$lambda.json"
+  done
+  python3 - "$id" "$seconds" "$out/$id-$early.json" "$out/$id-$last.json" <<'EOF'
+import json, sys
+rid, seconds, paths = sys.argv[1], sys.argv[2], sys.argv[3:]
+cells = []
+for path in paths:
+    r = json.load(open(path))["faults"]
+    faults = [f for f in r["faults"] if not f["diffuse"]]
+    diffuse = sum(f["bonds"] for f in r["faults"] if f["diffuse"])
+    angles = ", ".join(f"{f['alpha_deg']:.1f}" for f in faults[:4]) or "-"
+    cells.append(f"{r['broken_bonds']} broken; {len(faults)} faults (alpha {angles}); "
+                 f"{diffuse} in diffuse clusters; {len(r['grabens'])} grabens")
+print(f"| {rid} | {cells[0]} | {cells[1]} | {seconds} s |")
+EOF
+}
+
+echo "| run | at lambda = $early | at the end | wall |"
+echo "|---|---|---|---|"
+m3="strength.tau0_factor=3"
+run fig4a-fixed fig4a-tensile-2d.toml
+run fig4a-event fig4a-tensile-2d.toml --set stepping.method=event
+run fig4a-tensor fig4a-tensile-2d.toml --set stepping.method=event --set strength.bond_stress=tensor
+run fig4b-fixed fig4b-tensile-or-shear-2d.toml
+run fig4b-m1 fig4b-tensile-or-shear-2d.toml --set strength.tau0_factor=1
+run fig6-fixed fig6-elliptic-graben-2d.toml
+run fig6-event fig6-elliptic-graben-2d.toml --set stepping.method=event
+run fig6-m12-tensor fig6-elliptic-graben-2d.toml --set stepping.method=event \
+  --set strength.tau0_factor=12 --set strength.bond_stress=tensor
+run fig7a-fixed fig6-elliptic-graben-2d.toml --set strength.friction_angle=30
+run fig7b-fixed fig6-elliptic-graben-2d.toml --set strength.friction_angle=45
+run fig7c-fixed fig7c-drucker-prager-2d.toml
+run fig7d-event fig7c-drucker-prager-2d.toml --set stepping.method=event
+# Shear alone: tensile_or_shear with a tensile strength that is never reached and the
+# tau0 of the other scenes (m = 3, psi = 34 deg) given directly.
+run fig7f-shear fig4b-tensile-or-shear-2d.toml --set strength.sigma0=1e15 \
+  --set strength.tau0_factor=1 --set strength.tau0=141.05e6
+run fig8-fixed fig6-elliptic-graben-2d.toml --set lattice.size=[60e3,15e3] \
+  --set loading.total=0.02 --set 'output.snapshots=[0.0005,0.001,0.01,0.02]' \
+  --set 'precut=[{from=[30250,15900],to=[30250,10e3]}]'
+run reference-3d reference-3d.toml
