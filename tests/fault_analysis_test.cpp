@@ -107,6 +107,39 @@ double distance_to_line(const Xyz& p, double x0, double z0, double angle_deg) {
   return std::abs((p[0] - x0) * s - (p[2] - z0) * c);
 }
 
+// Distance in the x-z plane from p to the segment from a to b (each given as x, z).
+double distance_to_segment(const Xyz& p, std::array<double, 2> a, std::array<double, 2> b) {
+  const double dx = b[0] - a[0], dz = b[1] - a[1];
+  const double along =
+      std::clamp(((p[0] - a[0]) * dx + (p[2] - a[1]) * dz) / (dx * dx + dz * dz), 0.0, 1.0);
+  return std::hypot(p[0] - a[0] - along * dx, p[2] - a[1] - along * dz);
+}
+
+// Breaks the bonds within half a spacing of the polyline through `corners` (x, z), so the
+// midpoints scatter like a lattice crack's, about 0.3 spacings (rms) about each segment.
+std::vector<std::int64_t> break_along(RunResult& result,
+                                      const std::vector<std::array<double, 2>>& corners) {
+  return break_where(result, [&](const Xyz& m) {
+    for (std::size_t c = 0; c + 1 < corners.size(); ++c) {
+      if (distance_to_segment(m, corners[c], corners[c + 1]) < 0.5) return true;
+    }
+    return false;
+  });
+}
+
+std::int64_t total_bonds(const FaultReport& report) {
+  std::int64_t total = 0;
+  for (const Fault& fault : report.faults) total += fault.bonds;
+  return total;
+}
+
+// The number of clusters, splitting none.
+std::size_t cluster_count(const RunResult& result) {
+  FaultOptions unsplit;
+  unsplit.max_split_depth = 0;
+  return analyze_faults(result, kLastSnapshot, unsplit).faults.size();
+}
+
 void add_events(RunResult& result, const std::vector<std::int64_t>& bonds, std::int8_t mode) {
   for (const std::int64_t b : bonds) result.events.push_back({0.01, b, 1.0, mode, 0});
 }
@@ -331,6 +364,12 @@ TEST_CASE("Small clusters are dropped; the threshold is an option", "[analysis]"
   CHECK(analyze_faults(result, kLastSnapshot, options).faults.size() == 1);
   options.link_distance_spacings = 0;
   CHECK_THROWS_AS(analyze_faults(result, kLastSnapshot, options), InputError);
+  options = {};
+  options.max_split_depth = -1;
+  CHECK_THROWS_AS(analyze_faults(result, kLastSnapshot, options), InputError);
+  options = {};
+  options.split_rms_spacings = 0;
+  CHECK_THROWS_AS(analyze_faults(result, kLastSnapshot, options), InputError);
 }
 
 TEST_CASE("JSON writes non-finite numbers as null and parses", "[analysis]") {
@@ -353,4 +392,175 @@ TEST_CASE("JSON writes non-finite numbers as null and parses", "[analysis]") {
   CHECK(json.find("\"dip_deg\": null") != std::string::npos);
   CHECK(json.find("\"surface_subsidence\": null") != std::string::npos);
   CHECK(json.find("\"diffuse\": true") != std::string::npos);
+}
+
+TEST_CASE("Two faults meeting in a V at depth are split and bound a graben", "[analysis]") {
+  const double dip = GENERATE(45.0, 60.0, 75.0);
+  CAPTURE(dip);
+  RunResult result = triangular();
+  const double top = top_z(result);
+  // The arms reach the surface at 30 -/+ half_width and meet 24 m below it at x = 30.
+  const double apex_depth = 24.0;
+  const double half_width = apex_depth / std::tan(dip * kDegree);
+  const double apex_z = top - apex_depth;
+  const auto marked =
+      break_along(result, {{30.0 - half_width, top}, {30.0, apex_z}, {30.0 + half_width, top}});
+  auto& displacement = result.snapshots.back().displacement;
+  for (std::size_t i = 0; i < result.node_count(); ++i) {
+    const double x = result.positions[3 * i], z = result.positions[3 * i + 2];
+    if (z > apex_z && std::abs(x - 30.0) < (z - apex_z) / std::tan(dip * kDegree)) {
+      displacement[3 * i + 2] = -10.0;
+    }
+  }
+  REQUIRE(cluster_count(result) == 1);
+  const FaultReport report = analyze_faults(result);
+
+  REQUIRE(report.faults.size() == 2);
+  CHECK(total_bonds(report) == static_cast<std::int64_t>(marked.size()));
+  for (const Fault& fault : report.faults) {
+    CHECK(std::abs(fault.dip_deg - dip) < 1.0);
+    CHECK_FALSE(fault.diffuse);
+  }
+  CHECK(report.faults[0].dip_direction == -report.faults[1].dip_direction);
+  REQUIRE(report.grabens.size() == 1);
+  const Graben& graben = report.grabens[0];
+  CHECK(report.faults[graben.left_fault].dip_direction == 1);
+  CHECK(report.faults[graben.right_fault].dip_direction == -1);
+  CHECK(graben.left_surface_x == Approx(30.0 - half_width).margin(0.5));
+  CHECK(graben.right_surface_x == Approx(30.0 + half_width).margin(0.5));
+  CHECK(graben.apex_depth == Approx(apex_depth).margin(1.0));
+  CHECK(graben.surface_subsidence == Approx(10.0).epsilon(0.01));
+}
+
+TEST_CASE("An inverted V is split into its two arms", "[analysis]") {
+  const double dip = GENERATE(50.0, 60.0, 70.0);
+  CAPTURE(dip);
+  RunResult result = triangular();
+  const double top = top_z(result);
+  // From a common point 3 m below the surface the arms go down and outwards to z = 2 m.
+  const double apex_z = top - 3.0;
+  const double spread = (apex_z - 2.0) / std::tan(dip * kDegree);
+  const auto marked =
+      break_along(result, {{30.0 - spread, 2.0}, {30.0, apex_z}, {30.0 + spread, 2.0}});
+  REQUIRE(cluster_count(result) == 1);
+  const FaultReport report = analyze_faults(result);
+
+  REQUIRE(report.faults.size() == 2);
+  CHECK(total_bonds(report) == static_cast<std::int64_t>(marked.size()));
+  const Fault& left = report.faults[0].centroid[0] < 30 ? report.faults[0] : report.faults[1];
+  const Fault& right = report.faults[0].centroid[0] < 30 ? report.faults[1] : report.faults[0];
+  for (const Fault* fault : {&left, &right}) {
+    CHECK(std::abs(fault->dip_deg - dip) < 1.0);
+    CHECK_FALSE(fault->diffuse);
+  }
+  CHECK(left.dip_direction == -1);  // each arm descends outwards
+  CHECK(right.dip_direction == 1);
+  CHECK(report.grabens.empty());
+}
+
+TEST_CASE("A rough or thick straight fault is not split", "[analysis]") {
+  // half_width: bonds within this of the line break. wiggle: amplitude (m) of a sideways
+  // wave of 5 m wavelength along it, the roughness of a lattice crack.
+  const auto [half_width, wiggle] =
+      GENERATE(table<double, double>({{0.5, 0.0}, {0.5, 1.0}, {1.0, 0.7}, {2.0, 0.0}, {3.0, 0.0}}));
+  CAPTURE(half_width, wiggle);
+  RunResult result = triangular();
+  const double dip = 60.0;
+  const auto marked = break_where(result, [&](const Xyz& m) {
+    const double along =
+        (m[0] - 30.0) * std::cos(dip * kDegree) + (m[2] - 17.0) * std::sin(dip * kDegree);
+    const double across =
+        (m[0] - 30.0) * std::sin(dip * kDegree) - (m[2] - 17.0) * std::cos(dip * kDegree);
+    return std::abs(across - wiggle * std::sin(2 * M_PI * along / 5.0)) < half_width;
+  });
+  const FaultReport report = analyze_faults(result);
+
+  REQUIRE(report.faults.size() == 1);
+  const Fault& fault = report.faults[0];
+  CHECK(fault.bonds == static_cast<std::int64_t>(marked.size()));
+  CHECK(std::abs(fault.dip_deg - dip) < 1.0);
+  CHECK_FALSE(fault.diffuse);
+  if (half_width == 3.0) CHECK(fault.fit_rms > FaultOptions{}.split_rms_spacings);  // tried
+}
+
+TEST_CASE("A shattered disc or slab stays one diffuse cluster", "[analysis]") {
+  const auto [half_length, half_height] =
+      GENERATE(table<double, double>({{4.0, 4.0}, {7.0, 7.0}, {12.0, 12.0}, {25.0, 8.0}}));
+  CAPTURE(half_length, half_height);
+  RunResult result = triangular();
+  const auto marked = break_where(result, [&](const Xyz& m) {
+    return std::hypot((m[0] - 30.0) / half_length, (m[2] - 17.0) / half_height) < 1.0;
+  });
+  const FaultReport report = analyze_faults(result);
+
+  REQUIRE(report.faults.size() == 1);
+  CHECK(report.faults[0].bonds == static_cast<std::int64_t>(marked.size()));
+  CHECK(report.faults[0].diffuse);
+  CHECK(report.grabens.empty());
+}
+
+TEST_CASE("A shattered ball in 3-D stays one diffuse cluster", "[analysis]") {
+  RunResult result = cubic();
+  const auto marked = break_where(
+      result, [](const Xyz& m) { return std::hypot(m[0] - 7.5, m[1] - 7.5, m[2] - 7.5) < 5.0; });
+  const FaultReport report = analyze_faults(result);
+
+  REQUIRE(report.faults.size() == 1);
+  CHECK(report.faults[0].bonds == static_cast<std::int64_t>(marked.size()));
+  CHECK(report.faults[0].diffuse);
+}
+
+TEST_CASE("A zigzag crack is split into its straight segments", "[analysis]") {
+  RunResult result = triangular(40, 60);
+  // Three segments 15 m high, dipping 60 deg down to the right, to the left, to the right.
+  const double step = 15.0 / std::tan(60.0 * kDegree);
+  const auto marked =
+      break_along(result, {{15.0, 48.0}, {15.0 + step, 33.0}, {15.0, 18.0}, {15.0 + step, 3.0}});
+  REQUIRE(cluster_count(result) == 1);
+  const FaultReport report = analyze_faults(result);
+
+  REQUIRE(report.faults.size() == 3);
+  CHECK(total_bonds(report) == static_cast<std::int64_t>(marked.size()));
+  std::vector<Fault> by_depth = report.faults;
+  std::sort(by_depth.begin(), by_depth.end(),
+            [](const Fault& a, const Fault& b) { return a.centroid[2] > b.centroid[2]; });
+  const std::array<int, 3> directions{1, -1, 1};
+  for (std::size_t k = 0; k < 3; ++k) {
+    CHECK(std::abs(by_depth[k].dip_deg - 60.0) < 1.0);
+    CHECK(by_depth[k].dip_direction == directions[k]);
+    CHECK(by_depth[k].centroid[2] == Approx(40.5 - 15.0 * k).margin(1.0));
+  }
+}
+
+TEST_CASE("Two planes meeting in a V at depth in 3-D are split and bound a graben", "[analysis]") {
+  const double dip = GENERATE(50.0, 60.0);
+  CAPTURE(dip);
+  RunResult result = cubic(20);
+  const double top = top_z(result);
+  // The planes run along y, reach the surface at x = 10 -/+ half_width and meet at depth.
+  const double half_width = 6.0;
+  const double apex_depth = half_width * std::tan(dip * kDegree);
+  const double apex_z = top - apex_depth;
+  const double s = std::sin(dip * kDegree), c = std::cos(dip * kDegree);
+  const auto marked = break_where(result, [&](const Xyz& m) {
+    if (m[2] < apex_z - 0.5) return false;
+    return std::abs((m[0] - 10.0 + half_width) * s + (m[2] - top) * c) < 0.5 ||
+           std::abs((m[0] - 10.0 - half_width) * s - (m[2] - top) * c) < 0.5;
+  });
+  REQUIRE(cluster_count(result) == 1);
+  const FaultReport report = analyze_faults(result);
+
+  REQUIRE(report.faults.size() == 2);
+  CHECK(total_bonds(report) == static_cast<std::int64_t>(marked.size()));
+  for (const Fault& fault : report.faults) {
+    CHECK(std::abs(fault.dip_deg - dip) < 1.0);
+    CHECK_FALSE(fault.diffuse);
+  }
+  REQUIRE(report.grabens.size() == 1);
+  const Graben& graben = report.grabens[0];
+  CHECK(report.faults[graben.left_fault].dip_direction == 1);
+  CHECK(report.faults[graben.right_fault].dip_direction == -1);
+  CHECK(graben.left_surface_x == Approx(10.0 - half_width).margin(0.5));
+  CHECK(graben.right_surface_x == Approx(10.0 + half_width).margin(0.5));
+  CHECK(graben.apex_depth == Approx(apex_depth).margin(1.0));
 }

@@ -11,8 +11,11 @@
 //
 // A cluster whose second variance is comparable to its first (2-D), or whose smallest is
 // comparable to its middle one (3-D), has no well-defined line or plane: a shattered region.
-// It is reported and flagged `diffuse`, never taken for a fault. docs/fault-analysis.md gives
-// the method, the units and sign conventions, and the graben rule.
+// It is reported and flagged `diffuse`, never taken for a fault. A cluster that one line or
+// plane does not fit but several do, such as two faults meeting in a V, is split into its
+// straight parts (k-lines or k-planes, recursively), each reported as a fault; a shattered
+// region does not split into faults and stays one diffuse cluster. docs/fault-analysis.md
+// gives the method, the splitting rule, the units and sign conventions, and the graben rule.
 #pragma once
 
 #include <array>
@@ -33,6 +36,10 @@ struct FaultOptions {
   // A fault's points scatter about a spacing from its fitted line or plane; a cluster
   // whose rms distance exceeds this many spacings is a shattered region, diffuse too.
   double diffuse_rms_spacings = 3.0;
+  // A cluster that is diffuse, or whose rms distance exceeds this many spacings, is tried
+  // for a split into straight faults (two faults that touch: a V, a Y, a zigzag).
+  double split_rms_spacings = 1.5;
+  int max_split_depth = 3;  // levels of dividing a cluster into parts; 0: never split
 };
 
 struct Fault {
