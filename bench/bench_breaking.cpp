@@ -10,13 +10,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <random>
 #include <string>
 
 #include "bench_cases.h"
 #include "latfrac/equilibrium.h"
 #include "latfrac/fracture.h"
-#include "latfrac/fragments.h"
+#include "random_breaks.h"
 
 using namespace latfrac;
 
@@ -74,19 +73,10 @@ void run_case(int dim, long nodes, Ordering ordering) {
 
   // Breaks of random bonds that leave the body supported: downdate, re-solve and check,
   // evaluate the criterion. The first update converts the factor to simplicial LDL'.
-  const FragmentDetector fragments(model);
-  std::mt19937_64 random(7);
-  std::uniform_int_distribution<std::int64_t> pick(0, model.lattice.bond_count() - 1);
   const int breaks = 10;
   double update = 0, resolve = 0, evaluate = 0;
-  for (int done = -1; done < breaks;) {
-    const std::int64_t bond = pick(random);
-    if (!model.intact[bond]) continue;
-    model.intact[bond] = 0;
-    if (!fragments.unsupported_after_break(model, bond).empty()) {
-      model.intact[bond] = 1;
-      continue;
-    }
+  int done = -1;  // the first break pays the conversion to LDL'; reported apart
+  testing::for_random_supported_breaks(model, breaks + 1, 7, [&](std::int64_t bond) {
     auto t0 = Clock::now();
     solver.remove_bond(bond);
     auto t1 = Clock::now();
@@ -94,11 +84,11 @@ void run_case(int dim, long nodes, Ordering ordering) {
     auto t2 = Clock::now();
     critical = evaluator.most_critical(model, model.full_displacement(u, lambda));
     auto t3 = Clock::now();
-    if (done++ < 0) continue;  // the first break pays the conversion to LDL'; reported apart
+    if (done++ < 0) return;
     update += std::chrono::duration<double>(t1 - t0).count();
     resolve += std::chrono::duration<double>(t2 - t1).count();
     evaluate += std::chrono::duration<double>(t3 - t2).count();
-  }
+  });
   update /= breaks;
   resolve /= breaks;
   evaluate /= breaks;

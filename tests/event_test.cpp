@@ -16,11 +16,7 @@ namespace {
 
 Scene strip_scene(Criterion criterion) {
   Scene scene = testing::box_scene(2, 1.0, {20.0, 0, 10.0}, false);
-  Strength strength;
-  strength.criterion = criterion;
-  strength.sigma0 = 50e6;
-  strength.friction_angle = 30.0;
-  scene.strength = strength;
+  scene.strength = testing::strength_of(criterion, 50e6);
   scene.stepping = {SteppingMethod::event, 0};
   return scene;
 }
@@ -28,10 +24,7 @@ Scene strip_scene(Criterion criterion) {
 // A small crust: gravity, a pre-cut from the surface, the tensile criterion.
 Scene notched_scene() {
   Scene scene = testing::box_scene(2, 1000.0, {16e3, 0, 8e3}, true);
-  Strength strength;
-  strength.criterion = Criterion::tensile;
-  strength.sigma0 = 50e6;
-  scene.strength = strength;
+  scene.strength = testing::strength_of(Criterion::tensile, 50e6);
   scene.precuts.push_back({{8250, 0, 9000}, {8250, 0, 5500}, {}, {}, {}});
   scene.loading.total = 5e-4;
   scene.stepping = {SteppingMethod::event, 0};
@@ -124,12 +117,8 @@ TEST_CASE("Fixed-step runs converge to the event-driven result as ds shrinks", "
 TEST_CASE("A mirror-symmetric scene breaks mirror pairs at equal lambda, the same on every run",
           "[continuation]") {
   Scene scene = testing::box_scene(2, 1000.0, {16e3, 0, 8e3}, true);
-  Strength strength;
-  strength.criterion = Criterion::elliptic;
-  strength.sigma0 = 50e6;
-  strength.friction_angle = 34.0;
-  strength.tau0_factor = 3.0;
-  scene.strength = strength;
+  scene.strength = testing::strength_of(Criterion::elliptic, 50e6, 34.0);
+  scene.strength->tau0_factor = 3.0;
   scene.loading.total = 2e-3;
   scene.stepping = {SteppingMethod::event, 0};
   const RunResult result = run_scene(scene, {});

@@ -133,6 +133,17 @@ std::int64_t total_bonds(const FaultReport& report) {
   return total;
 }
 
+// Exactly two faults, neither diffuse, both at `dip` within 1 degree, holding all `marked`
+// bonds between them.
+void check_two_faults(const FaultReport& report, double dip, std::size_t marked) {
+  REQUIRE(report.faults.size() == 2);
+  CHECK(total_bonds(report) == static_cast<std::int64_t>(marked));
+  for (const Fault& fault : report.faults) {
+    CHECK(std::abs(fault.dip_deg - dip) < 1.0);
+    CHECK_FALSE(fault.diffuse);
+  }
+}
+
 // The number of clusters, splitting none.
 std::size_t cluster_count(const RunResult& result) {
   FaultOptions unsplit;
@@ -415,12 +426,7 @@ TEST_CASE("Two faults meeting in a V at depth are split and bound a graben", "[a
   REQUIRE(cluster_count(result) == 1);
   const FaultReport report = analyze_faults(result);
 
-  REQUIRE(report.faults.size() == 2);
-  CHECK(total_bonds(report) == static_cast<std::int64_t>(marked.size()));
-  for (const Fault& fault : report.faults) {
-    CHECK(std::abs(fault.dip_deg - dip) < 1.0);
-    CHECK_FALSE(fault.diffuse);
-  }
+  check_two_faults(report, dip, marked.size());
   CHECK(report.faults[0].dip_direction == -report.faults[1].dip_direction);
   REQUIRE(report.grabens.size() == 1);
   const Graben& graben = report.grabens[0];
@@ -550,12 +556,7 @@ TEST_CASE("Two planes meeting in a V at depth in 3-D are split and bound a grabe
   REQUIRE(cluster_count(result) == 1);
   const FaultReport report = analyze_faults(result);
 
-  REQUIRE(report.faults.size() == 2);
-  CHECK(total_bonds(report) == static_cast<std::int64_t>(marked.size()));
-  for (const Fault& fault : report.faults) {
-    CHECK(std::abs(fault.dip_deg - dip) < 1.0);
-    CHECK_FALSE(fault.diffuse);
-  }
+  check_two_faults(report, dip, marked.size());
   REQUIRE(report.grabens.size() == 1);
   const Graben& graben = report.grabens[0];
   CHECK(report.faults[graben.left_fault].dip_direction == 1);

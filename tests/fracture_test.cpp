@@ -20,11 +20,7 @@ using testing::FinalState;
 
 Scene fracture_scene(Criterion criterion, double sigma0) {
   Scene scene = testing::box_scene(2, 1.0, {20.0, 0, 10.0}, false);
-  Strength strength;
-  strength.criterion = criterion;
-  strength.sigma0 = sigma0;
-  strength.friction_angle = 30.0;
-  scene.strength = strength;
+  scene.strength = testing::strength_of(criterion, sigma0);
   scene.stepping = {SteppingMethod::fixed, 1e-3};
   return scene;
 }

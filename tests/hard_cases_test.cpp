@@ -19,6 +19,7 @@
 #include "scenes.h"
 
 using namespace latfrac;
+using testing::strength_of;
 
 namespace {
 
@@ -42,14 +43,6 @@ bool snapshots_finite(const RunResult& result) {
       return false;
   }
   return true;
-}
-
-Strength strength_of(Criterion criterion, double sigma0, double friction_angle = 30.0) {
-  Strength strength;
-  strength.criterion = criterion;
-  strength.sigma0 = sigma0;
-  strength.friction_angle = friction_angle;
-  return strength;
 }
 
 // Equilibrium of a final state, part by part. The connected parts (intact bonds) are found

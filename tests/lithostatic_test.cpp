@@ -5,6 +5,7 @@
 
 #include "latfrac/equilibrium.h"
 #include "latfrac/node_stress.h"
+#include "lithostatic_check.h"
 #include "scenes.h"
 
 using namespace latfrac;
@@ -32,36 +33,12 @@ TEST_CASE("Lithostatic stress under gravity with the walls held", "[equilibrium]
   const Scene scene = dim == 2 ? testing::box_scene(2, 500.0, {30e3, 0, 15e3}, true)
                                : testing::box_scene(3, 1000.0, {30e3, 30e3, 8e3}, true);
   const Solved s = solve_scene(scene, 0.0);
-  const Lattice& lattice = s.model.lattice;
-  const std::vector<double> stress = node_stresses(s.model, s.displacement);
-  // The discrete body's free surface lies half a row pitch above the top row: each node
-  // carries the weight of a row-pitch-thick slab.
-  const double surface = lattice.extent.z() + lattice.row_pitch / 2;
-  const double rho_g = scene.material.density * scene.gravity->g;
-  const double nu = scene.material.poisson;
-  int checked = 0;
-  double worst_zz = 0, worst_xx = 0;
-  for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
-    const Vec3& p = lattice.positions[n];
-    // Mid-body: away from the top and base rows, and more than the body's height from the
-    // side faces, whose nodes have fewer bonds and shed weight into a boundary layer that
-    // decays over about the height (docs/model.md).
-    const bool mid_body =
-        p.z() > 0.2 * lattice.extent.z() && p.z() < 0.8 * lattice.extent.z() &&
-        std::abs(p.x() - lattice.extent.x() / 2) < 0.15 * lattice.extent.x() &&
-        (dim == 2 || std::abs(p.y() - lattice.extent.y() / 2) < 0.15 * lattice.extent.y());
-    if (!mid_body) continue;
-    const double expected_zz = -rho_g * (surface - p.z());
-    worst_zz = std::max(worst_zz, std::abs(stress[n * 6 + 2] / expected_zz - 1));
-    worst_xx =
-        std::max(worst_xx, std::abs(stress[n * 6 + 0] / (nu / (1 - nu) * stress[n * 6 + 2]) - 1));
-    ++checked;
-  }
-  INFO("dim " << dim << ": " << checked << " nodes, worst zz " << worst_zz << ", worst xx "
-              << worst_xx);
-  CHECK(checked > 20);
-  CHECK(worst_zz < 0.02);
-  CHECK(worst_xx < 0.02);
+  const testing::LithostaticError error = testing::lithostatic_error(scene, s.model, s.displacement);
+  INFO("dim " << dim << ": " << error.checked << " nodes, worst zz " << error.zz << ", worst xx "
+              << error.xx);
+  CHECK(error.checked > 20);
+  CHECK(error.zz < 0.02);
+  CHECK(error.xx < 0.02);
 }
 
 namespace {

@@ -35,11 +35,7 @@ Mat3 central_difference_tangent(const BondLaw& law, const BondReference& referen
 
 Scene strength_scene(bool large_kinematics, Criterion criterion, double sigma0) {
   Scene scene = testing::box_scene(2, 1.0, {12.0, 0, 6.0}, true);
-  Strength strength;
-  strength.criterion = criterion;
-  strength.sigma0 = sigma0;
-  strength.friction_angle = 30.0;
-  scene.strength = strength;
+  scene.strength = testing::strength_of(criterion, sigma0);
   scene.large_kinematics = large_kinematics;
   return scene;
 }
@@ -245,10 +241,7 @@ TEST_CASE("Without events the large-kinematics path ends at the equilibrium KINS
   Scene scene = dim == 2 ? testing::box_scene(2, 1.0, {12.0, 0, 6.0}, true)
                          : testing::box_scene(3, 1.0, {5.0, 3.0, 4.0}, true);
   scene.large_kinematics = true;
-  Strength strength;
-  strength.criterion = Criterion::tensile;
-  strength.sigma0 = 1e15;  // never reached
-  scene.strength = strength;
+  scene.strength = testing::strength_of(Criterion::tensile, 1e15);  // never reached
   Model model = build_model(scene);
   EquilibriumSolver solver(model, scene.solver);
   const FailureEvaluator evaluator(*scene.strength, model);

@@ -1,4 +1,5 @@
-// Test helper: break random bonds one by one, as a cascade would, keeping the body held.
+// Test and benchmark helper: break random bonds one by one, as a cascade would, keeping
+// the body held.
 #pragma once
 
 #include <cstdint>
@@ -9,11 +10,11 @@
 
 namespace latfrac::testing {
 
-// Breaks `count` random intact bonds (a fixed `seed`), skipping any whose loss would cut a
-// part loose, and downdates the solver's factor after each: these tests are about the
-// factor, not about fragments.
-inline void break_random_bonds(Model& model, EquilibriumSolver& solver, int count,
-                               std::uint64_t seed) {
+// Picks `count` random intact bonds (a fixed `seed`) whose loss cuts no part loose, marks
+// each broken in model.intact and calls apply(bond): these callers are about the factor,
+// not about fragments.
+template <class Apply>
+void for_random_supported_breaks(Model& model, int count, std::uint64_t seed, Apply apply) {
   const FragmentDetector fragments(model);
   std::mt19937_64 random(seed);
   std::uniform_int_distribution<std::int64_t> pick(0, model.lattice.bond_count() - 1);
@@ -25,9 +26,16 @@ inline void break_random_bonds(Model& model, EquilibriumSolver& solver, int coun
       model.intact[bond] = 1;
       continue;
     }
-    solver.remove_bond(bond);
+    apply(bond);
     ++broken;
   }
+}
+
+// Breaks them and downdates the solver's factor after each.
+inline void break_random_bonds(Model& model, EquilibriumSolver& solver, int count,
+                               std::uint64_t seed) {
+  for_random_supported_breaks(model, count, seed,
+                              [&](std::int64_t bond) { solver.remove_bond(bond); });
 }
 
 }  // namespace latfrac::testing

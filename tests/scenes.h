@@ -19,4 +19,14 @@ inline Scene box_scene(int dim, double spacing, std::array<double, 3> size, bool
   return scene;
 }
 
+// A [strength] section: the criterion, sigma0 (Pa) and the friction angle psi (degrees)
+// from which tau0 is derived with m = 1.
+inline Strength strength_of(Criterion criterion, double sigma0, double friction_angle = 30.0) {
+  Strength strength;
+  strength.criterion = criterion;
+  strength.sigma0 = sigma0;
+  strength.friction_angle = friction_angle;
+  return strength;
+}
+
 }  // namespace latfrac::testing

@@ -26,10 +26,7 @@ namespace {
 // A 20 m x 10 m strip pulled to lambda = 1e-3; its bonds start failing near sigma0 / E = 5e-4.
 Scene strip_scene() {
   Scene scene = testing::box_scene(2, 1.0, {20.0, 0, 10.0}, false);
-  Strength strength;
-  strength.criterion = Criterion::tensile;
-  strength.sigma0 = 50e6;
-  scene.strength = strength;
+  scene.strength = testing::strength_of(Criterion::tensile, 50e6);
   scene.loading.total = 1e-3;
   return scene;
 }

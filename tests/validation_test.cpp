@@ -15,6 +15,7 @@
 #include "latfrac/node_stress.h"
 #include "latfrac/problem_file.h"
 #include "latfrac/run.h"
+#include "lithostatic_check.h"
 
 using namespace latfrac;
 
@@ -42,9 +43,7 @@ GravityState gravity_state(const std::string& path, const std::vector<std::strin
   const FailureEvaluator evaluator(*s.scene.strength, s.model);
   std::vector<BreakMode> modes;
   evaluator.evaluate(s.model, u, s.f, modes);
-  // The top row carries half a row pitch of rock above itself: that is where sigma_zz = 0.
-  for (const Vec3& x : s.model.lattice.positions) s.surface = std::max(s.surface, x.z());
-  s.surface += 0.5 * s.model.lattice.row_pitch;
+  s.surface = testing::surface_height(s.model.lattice);
   return s;
 }
 
