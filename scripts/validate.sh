@@ -58,8 +58,13 @@ EOF
 echo "| run | at lambda = $early | at the end | wall |"
 echo "|---|---|---|---|"
 m3="strength.tau0_factor=3"
+# Fig. 4a as shipped uses the critical-plane reading; the other two readings for comparison.
 run fig4a-fixed fig4a-tensile-2d.toml
 run fig4a-event fig4a-tensile-2d.toml --set stepping.method=event
+# ... and its faults at lambda = 1e-3, when the pre-cut's crack is held by the confinement.
+"$latfrac" render "$out"/fig4a-event/*.h5 --lambda 0.001 -o "$figures/fig4a-event-0.001.png" \
+  --width 900 > /dev/null
+run fig4a-strain fig4a-tensile-2d.toml --set stepping.method=event --set strength.bond_stress=strain
 run fig4a-tensor fig4a-tensile-2d.toml --set stepping.method=event --set strength.bond_stress=tensor
 run fig4b-fixed fig4b-tensile-or-shear-2d.toml
 run fig4b-m1 fig4b-tensile-or-shear-2d.toml --set strength.tau0_factor=1
@@ -67,6 +72,8 @@ run fig6-fixed fig6-elliptic-graben-2d.toml
 run fig6-event fig6-elliptic-graben-2d.toml --set stepping.method=event
 run fig6-m12-tensor fig6-elliptic-graben-2d.toml --set stepping.method=event \
   --set strength.tau0_factor=12 --set strength.bond_stress=tensor
+run fig6-m8-critical fig6-elliptic-graben-2d.toml --set stepping.method=event \
+  --set strength.tau0_factor=8 --set strength.bond_stress=critical_plane
 run fig7a-fixed fig6-elliptic-graben-2d.toml --set strength.friction_angle=30
 run fig7b-fixed fig6-elliptic-graben-2d.toml --set strength.friction_angle=45
 run fig7c-fixed fig7c-drucker-prager-2d.toml

@@ -173,6 +173,21 @@ double first_crossing(Criterion criterion, const AffineBondStress& stress, doubl
   return to_lambda(from, x, to);
 }
 
+double first_crossing_convex(const std::function<double(double)>& f, double from, double to) {
+  if (f(from) >= 1) return from;
+  if (!(to > from) || f(to) < 1) return infinity;
+  double below = from, above = to;
+  for (int i = 0; i < 200; ++i) {
+    const double middle = 0.5 * (below + above);
+    if (middle <= below || middle >= above) break;  // adjacent doubles
+    if (above - below <= 4 * std::numeric_limits<double>::epsilon() *
+                             std::max(std::abs(below), std::abs(above)))
+      break;
+    (f(middle) >= 1 ? above : below) = middle;
+  }
+  return above;
+}
+
 // sqrt(J2(x)) = r(x) with r = k - alpha I1, squared: J2(x) - r(x)^2 = 0. The square admits
 // roots of sqrt(J2) = -r as well; those lie where alpha I1 > k, i.e. f > 1, and are dropped.
 double first_crossing_drucker_prager(const std::array<double, 6>& s0,

@@ -48,6 +48,26 @@ PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
       s = first_crossing_drucker_prager(s0, s1, criterion.dp_alpha,
                                         criterion.dp_k_per_cohesion * model.bond_tau0[b], s_from,
                                         s_to);
+    } else if (evaluator.bond_stress() == BondStress::critical_plane) {
+      // f is convex in lambda but not a polynomial: bisection, only up to the earliest
+      // crossing found so far (a later one cannot come first), with room for ties.
+      const Bond& bond = model.lattice.bonds[b];
+      const VoigtStress s0 = bond_stress_tensor(stress0, bond);
+      VoigtStress s1 = bond_stress_tensor(stress1, bond);
+      for (double& value : s1) value *= sign;
+      const auto f = [&](double l) {
+        VoigtStress at;
+        for (int k = 0; k < 6; ++k) at[k] = s0[k] + l * s1[k];
+        return critical_plane_index(criterion.criterion, at, model.dim(), model.bond_sigma0[b],
+                                    model.bond_tau0[b])
+            .value;
+      };
+      const double until =
+          std::isfinite(first)
+              ? std::min(s_to, first + 2 * FailureEvaluator::tie_tolerance *
+                                           std::max(std::abs(first), 1e-300))
+              : s_to;
+      s = first_crossing_convex(f, s_from, until);
     } else if (evaluator.uses_tensor()) {
       // The resolved stresses are linear in the tensor, so affine in lambda with it.
       const Bond& bond = model.lattice.bonds[b];

@@ -9,8 +9,9 @@ namespace latfrac {
 
 FailureEvaluator::FailureEvaluator(const Strength& strength, const Model& model)
     : parameters_(resolve_criterion(strength, model.dim())),
+      bond_stress_(strength.bond_stress),
       uses_tensor_(parameters_.criterion == Criterion::drucker_prager ||
-                   strength.bond_stress == BondStress::tensor) {
+                   strength.bond_stress != BondStress::strain) {
   const std::int64_t bonds = model.lattice.bond_count();
   normal_scale_.resize(bonds);
   shear_scale_.resize(bonds);
@@ -36,6 +37,9 @@ FailureIndex FailureEvaluator::bond_index(const Model& model, const Vector& disp
     if (parameters_.criterion == Criterion::drucker_prager)
       return drucker_prager_index(stress, parameters_.dp_alpha,
                                   parameters_.dp_k_per_cohesion * model.bond_tau0[bond]);
+    if (bond_stress_ == BondStress::critical_plane)
+      return critical_plane_index(parameters_.criterion, stress, model.dim(),
+                                  model.bond_sigma0[bond], model.bond_tau0[bond]);
     const ResolvedStress r = resolve_on(stress, model.lattice.bond_direction[bond]);
     return failure_index(parameters_.criterion, r.normal, r.shear.norm(),
                          model.bond_sigma0[bond], model.bond_tau0[bond]);

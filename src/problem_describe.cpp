@@ -69,9 +69,10 @@ void describe_strength(const Strength& strength, Listing& out) {
   out.entry("bond_stress", to_string(strength.bond_stress),
             strength.criterion == Criterion::drucker_prager
                 ? "(not used: drucker_prager always uses the stress tensor)"
-                : strength.bond_stress == BondStress::strain
-                      ? "(sigma_n = E eps_n, tau = G gamma)"
-                      : "(the bond's stress tensor resolved on its direction)");
+            : strength.bond_stress == BondStress::strain ? "(sigma_n = E eps_n, tau = G gamma)"
+            : strength.bond_stress == BondStress::tensor
+                ? "(the bond's stress tensor resolved on its direction)"
+                : "(the bond's stress tensor on the plane where f is largest)");
 }
 
 void describe_solver(const SolverOptions& solver, Listing& out) {

@@ -123,7 +123,7 @@ std::optional<Strength> read_strength(const Section& top) {
   strength.tau0 = s->number("tau0", positive("Pa"));
   strength.friction_angle = s->number("friction_angle", {0, 90, false, true, "degrees"});
   strength.tau0_factor = s->number("tau0_factor", positive(), 1.0);
-  if (const auto source = s->choice("bond_stress", {"strain", "tensor"}))
+  if (const auto source = s->choice("bond_stress", {"strain", "tensor", "critical_plane"}))
     strength.bond_stress = static_cast<BondStress>(*source);
 
   const std::string criterion = name_of(to_string(strength.criterion));

@@ -18,7 +18,15 @@ const char* to_string(Criterion criterion) {
 }
 
 const char* to_string(BondStress source) {
-  return source == BondStress::strain ? "strain" : "tensor";
+  switch (source) {
+    case BondStress::strain:
+      return "strain";
+    case BondStress::tensor:
+      return "tensor";
+    case BondStress::critical_plane:
+      return "critical_plane";
+  }
+  return "unknown";
 }
 
 const char* to_string(FaceCondition condition) {

@@ -207,3 +207,91 @@ TEST_CASE("2-D Drucker-Prager constants reproduce Mohr-Coulomb in plane strain",
   CHECK(drucker_prager_index({0, 0, 0, 0, c, 0}, tresca.alpha, tresca.k_per_cohesion * c).value ==
         Approx(1));
 }
+
+namespace {
+
+// The largest f over planes by brute force: normals sampled densely in the x-z plane (2-D)
+// or over the unit sphere (3-D), each plane's sigma_n and tau from resolve_on.
+double sampled_critical_plane(Criterion criterion, const VoigtStress& stress, int dim,
+                              double sigma0, double tau0) {
+  double best = 0;
+  const int steps = 720;
+  for (int i = 0; i < steps; ++i) {
+    const double theta = std::numbers::pi * i / steps;
+    for (int j = 0; j < (dim == 2 ? 1 : steps); ++j) {
+      const double phi = 2 * std::numbers::pi * j / steps;
+      const Eigen::Vector3d n = dim == 2 ? Eigen::Vector3d(std::cos(theta), 0, std::sin(theta))
+                                         : Eigen::Vector3d(std::sin(theta) * std::cos(phi),
+                                                           std::sin(theta) * std::sin(phi),
+                                                           std::cos(theta));
+      const ResolvedStress r = resolve_on(stress, n);
+      best = std::max(best, failure_index(criterion, r.normal, r.shear.norm(), sigma0, tau0).value);
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+TEST_CASE("the critical-plane reading: Rankine, Tresca and the elliptic maximum by hand",
+          "[criterion]") {
+  const double sigma0 = 50 * MPa, tau0 = 40 * MPa;
+  // Uniaxial tension of 30 MPa along 30 degrees from x in the x-z plane: s1 = 30 MPa, s3 = 0,
+  // whatever the direction. xx = 30 cos^2 30 = 22.5, zz = 7.5, xz = 30 sin30 cos30 = 12.99.
+  const VoigtStress tilted{22.5 * MPa, 0, 7.5 * MPa, 0, 7.5 * sqrt3 * MPa, 0};
+  for (int dim : {2, 3}) {
+    CHECK(critical_plane_index(Criterion::tensile, tilted, dim, sigma0, tau0).value ==
+          Approx(0.6));
+    // Tresca: r = 15 MPa; 15/40 < 0.6, so tensile.
+    const FailureIndex either =
+        critical_plane_index(Criterion::tensile_or_shear, tilted, dim, sigma0, tau0);
+    CHECK(either.value == Approx(0.6));
+    CHECK(either.mode == BreakMode::tensile);
+  }
+  // 2-D: the out-of-plane yy plays no part; in 3-D it is the largest principal stress.
+  const VoigtStress out_of_plane{0, 40 * MPa, -20 * MPa, 0, 0, 0};
+  CHECK(critical_plane_index(Criterion::tensile, out_of_plane, 2, sigma0, tau0).value == 0);
+  CHECK(critical_plane_index(Criterion::tensile, out_of_plane, 3, sigma0, tau0).value ==
+        Approx(0.8));
+  // Lithostatic compression (xx = zz / 4 = -50 MPa, zz = -200 MPa): no plane is in tension,
+  // the largest shear is r = 75 MPa, so tensile f = 0, tensile_or_shear f = 75/40 = 1.875
+  // (shear) and elliptic f = 1.875^2 (on the 45 degree plane).
+  const VoigtStress lithostatic{-50 * MPa, -50 * MPa, -200 * MPa, 0, 0, 0};
+  CHECK(critical_plane_index(Criterion::tensile, lithostatic, 2, sigma0, tau0).value == 0);
+  const FailureIndex shear =
+      critical_plane_index(Criterion::tensile_or_shear, lithostatic, 2, sigma0, tau0);
+  CHECK(shear.value == Approx(1.875));
+  CHECK(shear.mode == BreakMode::shear);
+  CHECK(critical_plane_index(Criterion::elliptic, lithostatic, 2, sigma0, tau0).value ==
+        Approx(1.875 * 1.875));
+  // Pure shear xz = 30 MPa with sigma0 > tau0 (the elliptic piece is concave): c = 0,
+  // r = 30, g(x) = (30 x / 50)^2 + (30^2 / 40^2)(1 - x^2) is largest at x = 0: 0.5625.
+  CHECK(critical_plane_index(Criterion::elliptic, {0, 0, 0, 0, 30 * MPa, 0}, 2, sigma0, tau0)
+            .value == Approx(0.5625));
+  CHECK_THROWS_AS(critical_plane_index(Criterion::drucker_prager, tilted, 2, sigma0, tau0), Error);
+}
+
+TEST_CASE("the critical-plane reading equals the largest f over sampled planes", "[criterion]") {
+  const VoigtStress states[] = {
+      {20 * MPa, 5 * MPa, -60 * MPa, 0, 10 * MPa, 0},
+      {30 * MPa, -10 * MPa, 25 * MPa, 8 * MPa, -5 * MPa, 12 * MPa},
+      {-80 * MPa, -20 * MPa, -30 * MPa, 3 * MPa, 40 * MPa, -7 * MPa},
+      {10 * MPa, 10 * MPa, 10 * MPa, 0, 0, 0},
+  };
+  // sigma0 above, equal to and below tau0: the elliptic piece concave, flat and convex.
+  for (double tau0 : {30 * MPa, 50 * MPa, 90 * MPa}) {
+    for (const VoigtStress& state : states) {
+      for (int dim : {2, 3}) {
+        for (Criterion c : {Criterion::tensile, Criterion::tensile_or_shear, Criterion::elliptic}) {
+          INFO("tau0 " << tau0 << " dim " << dim << " criterion " << static_cast<int>(c));
+          VoigtStress s = state;
+          if (dim == 2) s[3] = s[5] = 0;  // plane strain: no yz, xy
+          const double exact = critical_plane_index(c, s, dim, 50 * MPa, tau0).value;
+          const double sampled = sampled_critical_plane(c, s, dim, 50 * MPa, tau0);
+          CHECK(exact >= sampled * (1 - 1e-12));
+          CHECK(exact == Approx(sampled).epsilon(2e-4));
+        }
+      }
+    }
+  }
+}

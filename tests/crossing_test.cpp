@@ -254,3 +254,44 @@ TEST_CASE("Drucker-Prager crossings in hand-solved cases", "[crossing]") {
   CHECK(first_crossing_drucker_prager(zero, pressure, alpha, k, 0, 100) == inf);
   CHECK_THROWS_AS(first_crossing(Criterion::drucker_prager, {}, 1, 1, 0, 1), Error);
 }
+
+TEST_CASE("critical-plane crossings: hand-solved and against sampling", "[crossing]") {
+  const double sigma0 = 50 * MPa, tau0 = 40 * MPa;
+  // Hydrostatic compression -p plus l times uniaxial tension A along a tilted direction:
+  // s1(l) = -p + A l, so the tensile criterion crosses at l = (sigma0 + p) / A in 2-D and 3-D.
+  const double p = 20 * MPa, A = 35 * MPa;
+  const VoigtStress s0{-p, -p, -p, 0, 0, 0};
+  const VoigtStress s1{0.75 * A, 0, 0.25 * A, 0, 0.25 * sqrt3 * A, 0};
+  for (int dim : {2, 3}) {
+    const auto f = [&](double l) {
+      return critical_plane_index(Criterion::tensile, stress_at(s0, s1, l), dim, sigma0, tau0).value;
+    };
+    CHECK(first_crossing_convex(f, 0, 10) == Approx((sigma0 + p) / A).epsilon(1e-14));
+    CHECK(first_crossing_convex(f, 0, 1) == inf);         // ends before the crossing
+    CHECK(first_crossing_convex(f, 3, 10) == 3);          // already at f >= 1
+  }
+  // Random affine tensor paths: the bisection finds the sampled first crossing.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1, 1), positive(0, 1);
+  Outcomes outcomes;
+  for (int trial = 0; trial < 1500; ++trial) {
+    const Criterion criterion = trial % 3 == 0   ? Criterion::tensile
+                                : trial % 3 == 1 ? Criterion::tensile_or_shear
+                                                 : Criterion::elliptic;
+    VoigtStress a, b;
+    for (int i = 0; i < 6; ++i) {
+      a[i] = 30 * MPa * unit(rng);
+      b[i] = 50 * MPa * unit(rng);
+    }
+    const int dim = 2 + trial % 2;
+    const auto f = [&](double l) {
+      return critical_plane_index(criterion, stress_at(a, b, l), dim, sigma0, tau0).value;
+    };
+    const double from = unit(rng), to = from + 2 * positive(rng);
+    const double exact = first_crossing_convex(f, from, to);
+    compare(exact, sampled_crossing(f, from, to), from, to, outcomes);
+  }
+  CHECK(outcomes.at_from > 50);
+  CHECK(outcomes.crossing > 300);
+  CHECK(outcomes.none > 50);
+}

@@ -67,13 +67,15 @@ TEST_CASE("Event-driven breaking finds the analytic first break to 1e-12", "[con
   CHECK(fixed.events.front().lambda < 5e-4 + ds);
 }
 
-TEST_CASE("With bond_stress = tensor the first tensile break is at sigma0 / M", "[continuation]") {
+TEST_CASE("With the stress tensor the first tensile break is at sigma0 / M", "[continuation]") {
   // Rollers on top and base hold eps_zz = 0: uniaxial strain eps_xx = lambda, so the
   // interior stress is sigma_xx = M lambda with the P-wave modulus
   // M = E (1 - nu) / ((1 + nu)(1 - 2 nu)), and a horizontal bond's resolved sigma_n is
-  // sigma_xx. Its own strain would give E lambda instead (the previous test).
+  // sigma_xx. Its own strain would give E lambda instead (the previous test). sigma_xx is
+  // also the largest principal stress (sigma_zz = M lambda nu / (1 - nu) is smaller), so
+  // the critical-plane reading breaks at the same lambda.
   Scene scene = strip_scene(Criterion::tensile);
-  scene.strength->bond_stress = BondStress::tensor;
+  scene.strength->bond_stress = GENERATE(BondStress::tensor, BondStress::critical_plane);
   scene.faces[static_cast<int>(Face::z_max)] = FaceCondition::roller;
   scene.loading.total = 1e-3;
   const RunResult event = run_scene(scene, {});
@@ -82,6 +84,24 @@ TEST_CASE("With bond_stress = tensor the first tensile break is at sigma0 / M", 
   const double M = E * (1 - nu) / ((1 + nu) * (1 - 2 * nu));
   CHECK(event.events.front().lambda == Approx(scene.strength->sigma0 / M).epsilon(1e-9));
   CHECK(event.events.front().failure_index == Approx(1.0).epsilon(1e-12));
+}
+
+TEST_CASE("With the critical-plane reading tensile_or_shear fails in shear at 2 tau0 / E'",
+          "[continuation]") {
+  // A free top and no gravity: plane-strain uniaxial stress sigma_xx = E' lambda with
+  // E' = E / (1 - nu^2), sigma_zz = 0, so the largest shear is r = E' lambda / 2 on the 45
+  // degree planes. With tau0 = 10 MPa the shear part reaches 1 at 2 tau0 / E', before
+  // E' lambda reaches sigma0.
+  Scene scene = strip_scene(Criterion::tensile_or_shear);
+  scene.strength->tau0 = 10e6;
+  scene.strength->bond_stress = BondStress::critical_plane;
+  scene.loading.total = 1e-3;
+  const RunResult event = run_scene(scene, {});
+  REQUIRE(!event.events.empty());
+  const double nu = scene.material.poisson;
+  const double plane_strain_modulus = scene.material.young / (1 - nu * nu);
+  CHECK(event.events.front().lambda == Approx(2 * 10e6 / plane_strain_modulus).epsilon(1e-9));
+  CHECK(event.events.front().mode == static_cast<int>(BreakMode::shear));
 }
 
 TEST_CASE("The event-driven result depends on no stepping parameter", "[continuation]") {
@@ -101,7 +121,8 @@ TEST_CASE("The event-driven result depends on no stepping parameter", "[continua
 TEST_CASE("Fixed-step runs converge to the event-driven result as ds shrinks", "[continuation]") {
   Scene scene = notched_scene();
   // Both ways of taking a bond's stress: its own strain, and the resolved stress tensor.
-  scene.strength->bond_stress = GENERATE(BondStress::strain, BondStress::tensor);
+  scene.strength->bond_stress =
+      GENERATE(BondStress::strain, BondStress::tensor, BondStress::critical_plane);
   const std::set<std::int64_t> reference = broken_set(run_scene(scene, {}));
   std::vector<double> differences;
   for (double ds : {1e-4, 1e-5, 1e-6}) {

@@ -77,6 +77,20 @@ struct ResolvedStress {
 };
 ResolvedStress resolve_on(const VoigtStress& stress, const Eigen::Vector3d& n);
 
+// The largest f over all planes through the point (bond_stress = "critical_plane"), from
+// the outer Mohr circle: centre c = (s1 + s3) / 2, radius r = (s1 - s3) / 2 with s1 >= s3
+// the extreme principal stresses (in 3-D of the full tensor; in 2-D of the x-z part, the
+// planes that contain the y axis). A plane whose normal makes the angle phi / 2 with s1
+// carries sigma_n = c + r cos phi and tau = r sin phi, and every criterion here grows
+// with <sigma_n>+ and tau, so its largest value over all planes lies on that circle:
+//   tensile           f = <s1>+ / sigma0                       (Rankine)
+//   tensile_or_shear  f = max(<s1>+ / sigma0, r / tau0)        (Rankine or Tresca)
+//   elliptic          f = max over phi of (<c + r cos phi>+ / sigma0)^2 + (r sin phi / tau0)^2
+// The mode is that of the maximising plane. drucker_prager throws Error (it is already a
+// function of the tensor's invariants: drucker_prager_index).
+FailureIndex critical_plane_index(Criterion criterion, const VoigtStress& stress, int dim,
+                                  double sigma0, double tau0);
+
 // I1 = trace.
 double first_invariant(const VoigtStress& stress);
 // The symmetric bilinear form whose diagonal is J2: (s_a : s_b) / 2 with s the deviators,

@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <functional>
 
 #include "latfrac/scene.h"
 
@@ -38,6 +39,12 @@ double first_crossing(Criterion criterion, const AffineBondStress& stress, doubl
 double first_crossing_drucker_prager(const std::array<double, 6>& s0,
                                      const std::array<double, 6>& s1, double alpha, double k,
                                      double from, double to);
+
+// The same for any f that is continuous and convex along the path (the critical-plane
+// reading: a maximum over planes of convex functions of l): once f(from) < 1, f reaches 1
+// in (from, to] only if f(to) >= 1, and then once. Bisection brackets that point to
+// within a few ulps of l and returns the upper end, where f >= 1.
+double first_crossing_convex(const std::function<double(double)>& f, double from, double to);
 
 // The real roots of a x^2 + b x + c = 0, ascending, without cancellation (the root of
 // larger magnitude from q = -(b + sign(b) sqrt(b^2 - 4ac)) / 2, the other as c / q).

@@ -2,7 +2,8 @@
 //
 // A bond's normal and shear stresses come from its strains and its layer's moduli,
 // sigma_n = E dn / L0 and tau = G |ds| / L0 (model.md section 2), or, with
-// bond_stress = "tensor", from the bond's stress tensor resolved on its direction.
+// bond_stress = "tensor", from the bond's stress tensor resolved on its direction, or,
+// with bond_stress = "critical_plane", from that tensor on the plane where f is largest.
 // Drucker-Prager always uses that tensor, the mean of the two nodes' virial stresses.
 // The criteria themselves are in criterion.h.
 #pragma once
@@ -43,8 +44,9 @@ class FailureEvaluator {
 
   const CriterionParameters& parameters() const { return parameters_; }
   // True when f comes from the bonds' stress tensors (Drucker-Prager, or bond_stress =
-  // "tensor"), which need the node stresses.
+  // "tensor" or "critical_plane"), which need the node stresses.
   bool uses_tensor() const { return uses_tensor_; }
+  BondStress bond_stress() const { return bond_stress_; }
 
  private:
   FailureIndex bond_index(const Model& model, const Vector& displacement, std::int64_t bond,
@@ -55,6 +57,7 @@ class FailureEvaluator {
               const std::vector<double>& node_stress) const;
   double rank_tolerance() const;
   CriterionParameters parameters_;
+  BondStress bond_stress_ = BondStress::strain;
   bool uses_tensor_ = false;
   // Per bond: E / (L0 sigma0) and G / (L0 tau0), so that the normal and shear ratios are
   // dn times the first and |ds| times the second.

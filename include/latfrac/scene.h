@@ -31,7 +31,10 @@ enum class Criterion { tensile, tensile_or_shear, elliptic, drucker_prager };
 //   tensor: the bond's stress tensor (the mean of its nodes' virial stresses) resolved on
 //           the bond direction, sigma_n = n.S.n, tau = |S n - sigma_n n|; this carries the
 //           lithostatic confinement that bond strains miss
-enum class BondStress { strain, tensor };
+//   critical_plane: the same tensor on the plane where the criterion is largest (the
+//           material point's criterion: Rankine for tensile); the bond direction plays no
+//           part, so crack paths do not follow the lattice's rows
+enum class BondStress { strain, tensor, critical_plane };
 enum class SteppingMethod { event, fixed };
 enum class EquilibriumMethod { newton, relaxation };
 enum class Ordering { metis, nesdis, amd };
