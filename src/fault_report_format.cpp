@@ -54,8 +54,8 @@ std::string to_text(const FaultReport& report) {
     if (three_d) text += format(" %11.5g", fault.centroid[1]);
     text += format(" %11.5g", fault.centroid[2]);
     if (fault.diffuse)
-      text += format("  diffuse (variance ratio %.2f, rms %.3g m): not a fault",
-                     fault.variance_ratio, fault.fit_rms);
+      text += format("  diffuse (variance ratio %.2f, rms %.3g m, fill share %.2f): not a fault",
+                     fault.variance_ratio, fault.fit_rms, fault.fill_share);
     text += "\n";
   }
   if (report.grabens.empty()) return text;
@@ -90,6 +90,7 @@ std::string to_json(const FaultReport& report) {
             ", \"extent\": " + json_number(fault.extent) +
             ", \"fit_rms\": " + json_number(fault.fit_rms) +
             ", \"variance_ratio\": " + json_number(fault.variance_ratio) +
+            ", \"fill_share\": " + json_number(fault.fill_share) +
             ", \"diffuse\": " + (fault.diffuse ? "true" : "false") + "}";
   }
   json += "], \"grabens\": [";

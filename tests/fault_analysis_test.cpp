@@ -60,16 +60,18 @@ RunResult triangular(int columns = 60, int rows = 40) {
   return lattice_result(2, nodes, {1.0});
 }
 
-// A simple cubic block at spacing 1, with edge and face-diagonal bonds.
-RunResult cubic(int size = 16) {
+// A simple cubic box of nx x ny x nz nodes at spacing 1, with edge and face-diagonal bonds.
+RunResult cubic_box(int nx, int ny, int nz) {
   std::vector<Xyz> nodes;
-  for (int k = 0; k < size; ++k) {
-    for (int j = 0; j < size; ++j) {
-      for (int i = 0; i < size; ++i) nodes.push_back({double(i), double(j), double(k)});
+  for (int k = 0; k < nz; ++k) {
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) nodes.push_back({double(i), double(j), double(k)});
     }
   }
   return lattice_result(3, nodes, {1.0, std::sqrt(2.0)});
 }
+
+RunResult cubic(int size = 16) { return cubic_box(size, size, size); }
 
 double top_z(const RunResult& result) {
   double top = -std::numeric_limits<double>::infinity();
@@ -564,4 +566,73 @@ TEST_CASE("Two planes meeting in a V at depth in 3-D are split and bound a grabe
   CHECK(graben.left_surface_x == Approx(10.0 - half_width).margin(0.5));
   CHECK(graben.right_surface_x == Approx(10.0 + half_width).margin(0.5));
   CHECK(graben.apex_depth == Approx(apex_depth).margin(1.0));
+}
+
+// The 3-D reference block is 60 x 10 x 30 km at a 3000 m spacing: four node layers in y. These
+// slabs are the same in lattice units: 40 x 4 x 20 nodes.
+TEST_CASE("A thin slab shattered throughout is diffuse, not a fault along the slab", "[analysis]") {
+  RunResult result = cubic_box(40, 4, 20);
+  // Every bond in a 30 x 14 m window of the x-z section breaks, through the whole thickness.
+  const auto marked = break_where(result, [](const Xyz& m) {
+    return std::abs(m[0] - 19.5) < 15.0 && std::abs(m[2] - 9.5) < 7.0;
+  });
+  const FaultReport report = analyze_faults(result);
+
+  REQUIRE(report.faults.size() == 1);
+  const Fault& slab = report.faults[0];
+  CHECK(slab.bonds == static_cast<std::int64_t>(marked.size()));
+  CHECK(slab.diffuse);
+  CHECK(report.grabens.empty());
+  // The cluster is flat in y only because the slab is: the fit is the slab's mid-plane, and
+  // neither the variance ratio nor the rms (m, spacing 1) tells it from a fault.
+  CHECK(std::abs(slab.normal[1]) > 0.99);
+  CHECK(slab.variance_ratio < FaultOptions{}.diffuse_variance_ratio);
+  CHECK(slab.fit_rms < FaultOptions{}.diffuse_rms_spacings);
+  // Evenly filled across the 3 m thickness: thickness sqrt(12) rms near 3 m, share near 1.
+  CHECK(std::sqrt(12.0) * slab.fit_rms / 3.0 == Approx(1.0).margin(0.25));
+  CHECK(slab.fill_share == Approx(std::sqrt(12.0) * slab.fit_rms / 3.0).epsilon(0.02));
+
+  FaultOptions options;
+  options.diffuse_fill_share = 2.0;  // more than the slab can fill: the old reading
+  CHECK_FALSE(analyze_faults(result, kLastSnapshot, options).faults[0].diffuse);
+  options.diffuse_fill_share = 0;
+  CHECK_THROWS_AS(analyze_faults(result, kLastSnapshot, options), InputError);
+}
+
+TEST_CASE("A plane through the whole thickness of a thin slab is a fault with its dip",
+          "[analysis]") {
+  // angle: the plane's trace in the x-z section rises towards +x at this angle; the plane
+  // contains the y axis, as a fault across a thin slab does.
+  const auto [angle, expected_direction] =
+      GENERATE(table<double, int>({{45.0, -1}, {60.0, -1}, {120.0, 1}, {90.0, 0}}));
+  CAPTURE(angle);
+  RunResult result = cubic_box(40, 4, 20);
+  const auto marked = break_where(
+      result, [&](const Xyz& m) { return distance_to_line(m, 19.3, 9.6, angle) < 0.5; });
+  const FaultReport report = analyze_faults(result);
+
+  const double dip = angle <= 90 ? angle : 180 - angle;
+  REQUIRE(report.faults.size() == 1);
+  const Fault& fault = report.faults[0];
+  CHECK(fault.bonds == static_cast<std::int64_t>(marked.size()));
+  CHECK_FALSE(fault.diffuse);
+  CHECK(std::abs(fault.dip_deg - dip) < 1.0);
+  CHECK(fault.dip_direction == expected_direction);
+  CHECK(std::abs(fault.normal[1]) < 0.02);
+}
+
+TEST_CASE("A plane along x in a block thick in y is a fault: the rule is not an angle",
+          "[analysis]") {
+  // The normal is along y, as for a shattered slab, but the 15 m block is many times
+  // thicker than the plane's few bonds: a vertical fault that strikes along x.
+  RunResult result = cubic(16);
+  const auto marked = break_where(result, [](const Xyz& m) { return std::abs(m[1] - 7.5) < 0.5; });
+  const FaultReport report = analyze_faults(result);
+
+  REQUIRE(report.faults.size() == 1);
+  const Fault& fault = report.faults[0];
+  CHECK(fault.bonds == static_cast<std::int64_t>(marked.size()));
+  CHECK_FALSE(fault.diffuse);
+  CHECK(std::abs(fault.normal[1]) > 0.999);
+  CHECK(fault.dip_deg == Approx(90.0).margin(1.0));
 }

@@ -11,7 +11,9 @@
 //
 // A cluster whose second variance is comparable to its first (2-D), or whose smallest is
 // comparable to its middle one (3-D), has no well-defined line or plane: a shattered region.
-// It is reported and flagged `diffuse`, never taken for a fault. A cluster that one line or
+// So has a cluster that fills the lattice across its fitted line or plane, such as a thin
+// slab shattered throughout, which is flat only because the slab is. Such a cluster is
+// reported and flagged `diffuse`, never taken for a fault. A cluster that one line or
 // plane does not fit but several do, such as two faults meeting in a V, is split into its
 // straight parts (k-lines or k-planes, recursively), each reported as a fault; a shattered
 // region does not split into faults and stays one diffuse cluster. docs/fault-analysis.md
@@ -36,6 +38,10 @@ struct FaultOptions {
   // A fault's points scatter about a spacing from its fitted line or plane; a cluster
   // whose rms distance exceeds this many spacings is a shattered region, diffuse too.
   double diffuse_rms_spacings = 3.0;
+  // A fault is thin compared with the lattice's width along its normal. A cluster whose
+  // thickness (sqrt(12) x its rms distance) exceeds this share of that width fills the
+  // lattice across, as a shattered thin slab does: diffuse too.
+  double diffuse_fill_share = 0.5;
   // A cluster that is diffuse, or whose rms distance exceeds this many spacings, is tried
   // for a split into straight faults (two faults that touch: a V, a Y, a zigzag).
   double split_rms_spacings = 1.5;
@@ -57,7 +63,10 @@ struct Fault {
   double fit_rms = 0;  // rms distance of the points from the fitted line/plane, m
   // 2-D: second / first principal variance; 3-D: smallest / middle. Small for a clean fault.
   double variance_ratio = 0;
-  bool diffuse = false;  // too round or too thick (FaultOptions): not a fault
+  // Thickness sqrt(12) fit_rms over the lattice's width along the normal; near 1 for a
+  // cluster that fills the lattice across (a shattered thin slab).
+  double fill_share = 0;
+  bool diffuse = false;  // too round, too thick or filling the lattice (FaultOptions): not a fault
 };
 
 struct Graben {
