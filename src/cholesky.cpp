@@ -234,6 +234,87 @@ void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
   check(c, ok, "cholmod_l_updown");
 }
 
+namespace {
+
+// The columns of a simplicial factor (column j starts at start[j] with its diagonal and
+// lists count[j] rows) that a forward solve from the given rows can change: every column
+// reachable along the graph of L, whose edges run from column j to the rows below its
+// diagonal. Returned in reverse topological order (a depth-first post-order).
+std::vector<std::int64_t> reached_columns(const std::vector<std::int64_t>& rows,
+                                          const std::int64_t* start, const std::int64_t* count,
+                                          const std::int64_t* row, std::int64_t n) {
+  std::vector<char> reached(n, 0);
+  std::vector<std::int64_t> order;
+  std::vector<std::pair<std::int64_t, std::int64_t>> stack;  // column, next entry to look at
+  for (std::int64_t root : rows) {
+    if (reached[root]) continue;
+    reached[root] = 1;
+    stack.push_back({root, 1});
+    while (!stack.empty()) {
+      auto& [j, next] = stack.back();
+      std::int64_t child = -1;
+      while (next < count[j] && child < 0) {
+        const std::int64_t i = row[start[j] + next++];
+        if (!reached[i]) child = i;
+      }
+      if (child < 0) {
+        order.push_back(j);
+        stack.pop_back();
+      } else {
+        reached[child] = 1;
+        stack.push_back({child, 1});
+      }
+    }
+  }
+  return order;
+}
+
+}  // namespace
+
+bool CholeskyFactor::solve_sparse(const Column& b, double* x) {
+  if (!factorized_) throw Error("CholeskyFactor::solve_sparse called before a successful factorization");
+  const cholmod_factor& f = *state_->factor;
+  const std::int64_t n = static_cast<std::int64_t>(f.n);
+  if (f.is_super || f.is_ll || static_cast<std::int64_t>(inverse_permutation_.size()) != n)
+    return false;
+  const auto* start = static_cast<const std::int64_t*>(f.p);
+  const auto* count = static_cast<const std::int64_t*>(f.nz);
+  const auto* row = static_cast<const std::int64_t*>(f.i);
+  const auto* value = static_cast<const double*>(f.x);
+  const auto* perm = static_cast<const std::int64_t*>(f.Perm);
+  // P b, then L y = P b over the reached columns only. In the simplicial LDL' form each
+  // column starts with its diagonal (D(j, j)); the entries below it are L(i, j).
+  std::vector<double> y(n, 0.0);
+  std::vector<std::int64_t> rows;
+  for (const auto& [r, v] : b) {
+    y[inverse_permutation_[r]] += v;
+    rows.push_back(inverse_permutation_[r]);
+  }
+  const std::vector<std::int64_t> order = reached_columns(rows, start, count, row, n);
+  for (auto it = order.rbegin(); it != order.rend(); ++it) {
+    const std::int64_t j = *it;
+    if (row[start[j]] != j) return false;
+    const double yj = y[j];
+    if (yj == 0) continue;
+    for (std::int64_t k = 1; k < count[j]; ++k) y[row[start[j] + k]] -= value[start[j] + k] * yj;
+  }
+  // D L' z = y over every column (the solution is dense): CHOLMOD's own simplicial solve,
+  // which treats runs of columns with one pattern together. Then x = P' z.
+  cholmod_common& c = state_->common;
+  cholmod_dense forward{};
+  forward.nrow = forward.d = forward.nzmax = static_cast<std::size_t>(n);
+  forward.ncol = 1;
+  forward.x = y.data();
+  forward.xtype = CHOLMOD_REAL;
+  forward.dtype = CHOLMOD_DOUBLE;
+  const int ok = cholmod_l_solve2(CHOLMOD_DLt, state_->factor, &forward, nullptr,
+                                  &state_->solution, nullptr, &state_->work_y, &state_->work_e, &c);
+  check(c, ok, "cholmod_l_solve2");
+  const double* z = static_cast<const double*>(state_->solution->x);
+  for (std::int64_t k = 0; k < n; ++k) x[perm[k]] = z[k];
+  return true;
+}
+
 // The column (in the matrix's own numbering) of the smallest diagonal entry of the
 // supernodal factor: where a nearly free motion shows.
 std::int64_t CholeskyFactor::smallest_pivot_column() const {

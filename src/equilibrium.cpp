@@ -164,6 +164,7 @@ void EquilibriumSolver::refactorize(const Vector& free_displacement, double lamb
     factor_current_ = true;
     return;
   }
+  last_solution_valid_ = false;
   stiffness_.assemble(model_, model_.full_displacement(free_displacement, lambda));
   factor_.factorize(stiffness_);
   ++counters_.factorizations;
@@ -178,6 +179,7 @@ void EquilibriumSolver::update_factor(
   if (!factor_current_) return;  // the next factorization assembles the new stiffness
   if (updates_since_factorization_ >= options_.refactor_every) {
     factor_current_ = false;
+    last_solution_valid_ = false;
     return;
   }
   const Bond& pair = model_.lattice.bonds[bond];
@@ -202,10 +204,52 @@ void EquilibriumSolver::update_factor(
     factor_.update(columns, downdate);
   } catch (const Error&) {
     factor_current_ = false;  // refactorize; a real singularity is reported there
+    last_solution_valid_ = false;
     return;
   }
   ++counters_.factor_updates;
   ++updates_since_factorization_;
+  if (last_solution_valid_) record_force_change(bond, weighted_directions, downdate);
+}
+
+void EquilibriumSolver::remember_solution(const Vector& free_displacement, double lambda) {
+  last_solution_ = free_displacement;
+  last_lambda_ = lambda;
+  last_solution_valid_ = true;
+  pending_forces_.clear();
+}
+
+// The spring sum_k w_k d_k d_k' between the bond's nodes carried the internal force
+// f = sum_k w_k (d_k . (u_j - u_i)) d_k on node j (and -f on node i) in the last solution.
+// Removing it leaves the residual R = internal - external short by f, so the correction
+// solves K du = f at j, -f at i; adding a spring (a contact closing) is the opposite.
+void EquilibriumSolver::record_force_change(
+    std::int64_t bond, const std::vector<std::pair<double, Vec3>>& weighted_directions,
+    bool downdate) {
+  const Bond& pair = model_.lattice.bonds[bond];
+  const std::vector<int> axes = model_.lattice.axes();
+  const int dim = model_.dim();
+  auto displacement = [&](std::int64_t node, int c) {
+    const std::int64_t dof = node * dim + c;
+    const std::int64_t f = model_.dofs.free_index[dof];
+    return f >= 0 ? last_solution_[f]
+                  : model_.dofs.prescribed_base[dof] + last_lambda_ * model_.dofs.prescribed_rate[dof];
+  };
+  Vec3 stretch = Vec3::Zero();  // u_j - u_i on the lattice's axes
+  for (int c = 0; c < dim; ++c)
+    stretch[axes[c]] = displacement(pair.j, c) - displacement(pair.i, c);
+  Vec3 force = Vec3::Zero();
+  for (const auto& [weight, direction] : weighted_directions)
+    force += weight * direction.dot(stretch) * direction;
+  const double sign = downdate ? 1.0 : -1.0;
+  for (int c = 0; c < dim; ++c) {
+    const double value = sign * force[axes[c]];
+    if (value == 0) continue;
+    const std::int64_t fj = model_.dofs.free_index[pair.j * dim + c];
+    const std::int64_t fi = model_.dofs.free_index[pair.i * dim + c];
+    if (fj >= 0) pending_forces_.push_back({fj, value});
+    if (fi >= 0) pending_forces_.push_back({fi, -value});
+  }
 }
 
 // The bond's stiffness kn n0 n0' + ks (I - n0 n0') as weighted orthonormal directions.
@@ -257,6 +301,18 @@ AffinePath EquilibriumSolver::checked_affine_path(double lambda) {
 
 Vector EquilibriumSolver::checked_solve(double lambda) {
   const std::int64_t n = model_.dofs.free_count;
+  if (last_solution_valid_ && factor_current_ && lambda == last_lambda_ && n > 0) {
+    Vector correction(n);
+    if (factor_.solve_sparse(pending_forces_, correction.data())) {
+      ++counters_.solves;
+      ++counters_.correction_solves;
+      Vector u = last_solution_ + correction;
+      if (relative_residual(u, lambda) <= options_.tolerance) {
+        remember_solution(u, lambda);
+        return u;
+      }
+    }
+  }
   for (int attempt = 0; attempt < 2; ++attempt) {
     if (!factor_current_) refactorize(Vector::Zero(n), 0.0);
     update_loads();
@@ -264,7 +320,10 @@ Vector EquilibriumSolver::checked_solve(double lambda) {
     if (n > 0) factor_.solve(u.data(), n, 1);
     ++counters_.solves;
     const double residual = relative_residual(u, lambda);
-    if (residual <= options_.tolerance) return u;
+    if (residual <= options_.tolerance) {
+      remember_solution(u, lambda);
+      return u;
+    }
     if (attempt == 1) throw Error(ill_conditioned(lambda, residual, options_.tolerance));
     factor_current_ = false;
   }
@@ -273,6 +332,7 @@ Vector EquilibriumSolver::checked_solve(double lambda) {
 
 // With every dof prescribed (everything held) there is nothing to analyse or solve.
 void EquilibriumSolver::supports_changed() {
+  last_solution_valid_ = false;  // the free dofs are others now
   stiffness_ = StiffnessMatrix(model_);
   kinsol_.reset();
   if (model_.dofs.free_count > 0) {

@@ -34,6 +34,12 @@ class CholeskyFactor {
 
   // A sparse column for a rank update: (row, value) pairs in the matrix's own numbering.
   using Column = std::vector<std::pair<std::int64_t, double>>;
+  // Solves K x = b for a right-hand side b with few nonzeros (rows may repeat: they add)
+  // into x (n entries). Needs the simplicial LDL' factor that updates leave: the forward
+  // solve then visits only the columns that b reaches in the factor's elimination graph,
+  // about half the work of solve() for the few-entry b of a bond's force. Returns false,
+  // leaving x alone, when the factor is still supernodal (use solve()).
+  bool solve_sparse(const Column& b, double* x);
   // K <- K + C C' (update) or K - C C' (downdate) on the factor itself, without
   // refactorizing. The first call converts the supernodal LL' factor to the simplicial
   // LDL' form that cholmod_l_updown needs. Throws Error if the result is not positive
