@@ -182,22 +182,11 @@ void EquilibriumSolver::update_factor(
     last_solution_valid_ = false;
     return;
   }
-  const Bond& pair = model_.lattice.bonds[bond];
-  const std::vector<int> axes = model_.lattice.axes();
-  const int dim = model_.dim();
   std::vector<CholeskyFactor::Column> columns;
   for (const auto& [weight, direction] : weighted_directions) {
     if (weight <= 0) continue;
-    const double scale = std::sqrt(weight);
     CholeskyFactor::Column column;
-    for (int c = 0; c < dim; ++c) {
-      const double value = scale * direction[axes[c]];
-      if (value == 0) continue;
-      const std::int64_t fj = model_.dofs.free_index[pair.j * dim + c];
-      const std::int64_t fi = model_.dofs.free_index[pair.i * dim + c];
-      if (fj >= 0) column.push_back({fj, value});
-      if (fi >= 0) column.push_back({fi, -value});
-    }
+    append_on_bond(bond, std::sqrt(weight) * direction, column);
     if (!column.empty()) columns.push_back(std::move(column));
   }
   try {
@@ -241,14 +230,21 @@ void EquilibriumSolver::record_force_change(
   Vec3 force = Vec3::Zero();
   for (const auto& [weight, direction] : weighted_directions)
     force += weight * direction.dot(stretch) * direction;
-  const double sign = downdate ? 1.0 : -1.0;
+  append_on_bond(bond, downdate ? force : Vec3(-force), pending_forces_);
+}
+
+void EquilibriumSolver::append_on_bond(std::int64_t bond, const Vec3& v,
+                                       CholeskyFactor::Column& column) const {
+  const Bond& pair = model_.lattice.bonds[bond];
+  const std::vector<int> axes = model_.lattice.axes();
+  const int dim = model_.dim();
   for (int c = 0; c < dim; ++c) {
-    const double value = sign * force[axes[c]];
+    const double value = v[axes[c]];
     if (value == 0) continue;
     const std::int64_t fj = model_.dofs.free_index[pair.j * dim + c];
     const std::int64_t fi = model_.dofs.free_index[pair.i * dim + c];
-    if (fj >= 0) pending_forces_.push_back({fj, value});
-    if (fi >= 0) pending_forces_.push_back({fi, -value});
+    if (fj >= 0) column.push_back({fj, value});
+    if (fi >= 0) column.push_back({fi, -value});
   }
 }
 

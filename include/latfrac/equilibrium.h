@@ -113,6 +113,8 @@ class EquilibriumSolver {
   // update, which the updated factor solves at about half the cost of a full one
   // (CholeskyFactor::solve_sparse). The residual check still guards the result.
   void remember_solution(const Vector& free_displacement, double lambda);
+  // Appends v on node j's free dofs and -v on node i's (the pattern of bond (i, j)).
+  void append_on_bond(std::int64_t bond, const Vec3& v, CholeskyFactor::Column& column) const;
   void record_force_change(std::int64_t bond,
                            const std::vector<std::pair<double, Vec3>>& weighted_directions,
                            bool downdate);
