@@ -156,7 +156,7 @@ EquilibriumSolver::~EquilibriumSolver() = default;
 
 double EquilibriumSolver::load_scale(double lambda) {
   update_loads();
-  return load0_.size() ? (load0_ + lambda * load1_).cwiseAbs().maxCoeff() : 0.0;
+  return max_abs(load0_ + lambda * load1_);
 }
 
 void EquilibriumSolver::refactorize(const Vector& free_displacement, double lambda) {
@@ -272,7 +272,7 @@ void EquilibriumSolver::set_contact(std::int64_t bond, bool active) {
 double EquilibriumSolver::relative_residual(const Vector& free_displacement, double lambda) {
   const double load = load_scale(lambda);
   if (load == 0) return 0;
-  return model_.residual(free_displacement, lambda).cwiseAbs().maxCoeff() / load;
+  return max_abs(model_.residual(free_displacement, lambda)) / load;
 }
 
 namespace {
@@ -391,8 +391,7 @@ EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacem
   check_flag(KINGetNumFuncEvals(k.memory, &report.residual_evaluations), "KINGetNumFuncEvals");
   double scaled_norm = 0;
   check_flag(KINGetFuncNorm(k.memory, &scaled_norm), "KINGetFuncNorm");
-  report.relative_residual =
-      model_.residual(free_displacement, lambda).cwiseAbs().maxCoeff() / load;
+  report.relative_residual = max_abs(model_.residual(free_displacement, lambda)) / load;
   if (report.relative_residual > options_.tolerance) {
     throw Error("KINSol stopped (" + flag_name(flag) + ") with the residual at " +
                 std::to_string(report.relative_residual) + " of the load, above the tolerance " +

@@ -1,6 +1,7 @@
 // Builds the mechanical model of a scene and evaluates its forces.
 #include "latfrac/model.h"
 
+#include <limits>
 #include <optional>
 #include <random>
 
@@ -164,6 +165,11 @@ Model build_model(const Scene& scene) {
     model.law = std::make_unique<SmallKinematics>();
   }
   return model;
+}
+
+double max_abs(const Vector& v) {
+  if (!v.allFinite()) return std::numeric_limits<double>::infinity();
+  return v.size() ? v.cwiseAbs().maxCoeff() : 0.0;
 }
 
 Vector Model::full_displacement(const Vector& free_displacement, double lambda) const {

@@ -23,7 +23,6 @@ using sundials::check_pointer;
 
 std::string flag_name(int flag) { return sundials::flag_name(CVodeGetReturnFlagName(flag)); }
 
-double max_norm(const Vector& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
 
 // Relative tolerance of the integration: the path only has to find the right crossing
 // and a good starting point for the correction (nonlinear_path.h).
@@ -192,14 +191,14 @@ Vector NonlinearPath::path_derivative(const Vector& free_displacement, double la
 
   // Refine to well below the integration tolerance; rounding may stop the refinement
   // earlier, which is harmless while the misfit is below a tenth of that tolerance.
-  const double load_size = max_norm(load_rate);
+  const double load_size = max_abs(load_rate);
   const double target = 1e-3 * path_tolerance(options_) * load_size;
   const double acceptable = 1e-1 * path_tolerance(options_) * load_size;
   double previous = load_size;
   for (int iteration = 0; iteration < 50; ++iteration) {
     Vector misfit =
         load_rate - directional_derivative(model_, displacement, embed_free(model_, rate));
-    const double size = max_norm(misfit);
+    const double size = max_abs(misfit);
     if (size <= target) return rate;
     if (iteration > 0 && !(size < 0.9 * previous)) {
       if (size <= acceptable) return rate;
@@ -265,7 +264,7 @@ PathEvent NonlinearPath::advance(double from, double to, Vector& free_displaceme
   const double relative = path_tolerance(options_);
   const Vector initial_rate = path_derivative(free_displacement, from);
   const double scale =
-      std::max({max_norm(free_displacement), max_norm(initial_rate) * std::abs(to - from),
+      std::max({max_abs(free_displacement), max_abs(initial_rate) * std::abs(to - from),
                 1e-15 * model_.lattice.spacing});
   PathIntegrator integrator(this, free_displacement, from, to, relative, relative * scale);
   double reached = from;

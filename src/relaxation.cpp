@@ -303,7 +303,7 @@ RelaxationReport RelaxationSolver::solve(const Model& model, double lambda,
   }
   const std::int64_t free_count = model.dofs.free_count;
   assert(free_displacement.size() == free_count);
-  const double load = model.residual(Vector::Zero(free_count), lambda).cwiseAbs().maxCoeff();
+  const double load = max_abs(model.residual(Vector::Zero(free_count), lambda));
   if (free_count == 0 || load == 0) {
     free_displacement.setZero(free_count);
     RelaxationReport report;

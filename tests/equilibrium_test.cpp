@@ -2,6 +2,8 @@
 #include "latfrac/equilibrium.h"
 
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
 
 #include "latfrac/error.h"
 #include "scenes.h"
@@ -20,8 +22,8 @@ TEST_CASE("KINSOL converges in one Newton iteration on an affine scene", "[equil
   CHECK(report.relative_residual < scene.solver.tolerance);
   // Independently: the residual of the returned state, relative to the load.
   const double load =
-      model.residual(Vector::Zero(model.dofs.free_count), lambda).cwiseAbs().maxCoeff();
-  CHECK(model.residual(u, lambda).cwiseAbs().maxCoeff() / load < scene.solver.tolerance);
+      max_abs(model.residual(Vector::Zero(model.dofs.free_count), lambda));
+  CHECK(max_abs(model.residual(u, lambda)) / load < scene.solver.tolerance);
   CHECK(solver.counters().factorizations == 1);
 }
 
@@ -37,7 +39,7 @@ TEST_CASE("The affine path from one two-column solve equals Newton at any lambda
     Vector u = Vector::Zero(model.dofs.free_count);
     solver.solve(lambda, u);
     const Vector from_path = path.at(lambda);
-    CHECK((u - from_path).cwiseAbs().maxCoeff() / from_path.cwiseAbs().maxCoeff() < 1e-9);
+    CHECK(max_abs(u - from_path) / max_abs(from_path) < 1e-9);
   }
   // The factor of a linear scene is reused: still one factorization.
   CHECK(solver.counters().factorizations == 1);
@@ -58,4 +60,20 @@ TEST_CASE("A scene with a rigid-body motion fails with a message naming the call
     CHECK_THAT(e.what(),
                Catch::Contains("cholmod_l_factorize") && Catch::Contains("without resistance"));
   }
+}
+
+TEST_CASE("Residual checks see a NaN or an infinity wherever it sits", "[equilibrium]") {
+  // A residual check that misses a NaN accepts a broken solve (tests/hard_cases_test.cpp).
+  for (int size : {1, 2, 7, 64}) {
+    for (int at = 0; at < size; ++at) {
+      for (double bad : {std::nan(""), -std::numeric_limits<double>::infinity()}) {
+        Vector v = Vector::LinSpaced(size, 1.0, 2.0);
+        v[at] = bad;
+        INFO("size " << size << ", bad entry at " << at);
+        CHECK(max_abs(v) == std::numeric_limits<double>::infinity());
+      }
+    }
+  }
+  CHECK(max_abs(Vector()) == 0.0);
+  CHECK(max_abs(Vector::LinSpaced(5, -3.0, 1.0)) == 3.0);
 }

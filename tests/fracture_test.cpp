@@ -26,7 +26,7 @@ Scene fracture_scene(Criterion criterion, double sigma0) {
 }
 
 double relative_difference(const Vector& a, const Vector& b) {
-  return (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();
+  return max_abs(a - b) / max_abs(b);
 }
 
 double wall_reaction(const FinalState& state, Face face) {

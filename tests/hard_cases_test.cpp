@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <numbers>
 #include <random>
 #include <set>
 
@@ -91,7 +92,7 @@ Balance balance(const FinalState& state) {
   }
   const Vector force = model.internal_force(state.displacement) - model.external_force;
   const Vector unloaded = model.residual(Vector::Zero(model.dofs.free_count), state.lambda);
-  const double load = unloaded.size() ? unloaded.cwiseAbs().maxCoeff() : 0.0;
+  const double load = max_abs(unloaded);
   Balance result;
   double worst = 0;
   std::vector<std::uint8_t> held(nodes, 0);
@@ -474,7 +475,7 @@ TEST_CASE(
   EquilibriumSolver fresh(model, scene.solver);
   const AffinePath reference = fresh.affine_path();
   auto relative_difference = [](const Vector& a, const Vector& b) {
-    return (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();
+    return max_abs(a - b) / max_abs(b);
   };
   const double gravity = relative_difference(updated.gravity, reference.gravity);
   const double extension = relative_difference(updated.extension, reference.extension);
@@ -567,19 +568,56 @@ Scene contact_scene(Criterion criterion, double sigma0, double tau0_factor, doub
   return scene;
 }
 
+// A contact scene pressed until it breaks around 4 to 6 triangular pieces cut out by
+// pre-cuts. Each side overshoots its corners by 0.3 m, so the cuts cross and no bond
+// keeps a piece attached at a corner.
+Scene pressed_triangles(std::mt19937& random) {
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<std::array<double, 4>> cuts;
+  const int triangles = 4 + static_cast<int>(3 * u(random));
+  for (int t = 0; t < triangles; ++t) {
+    const double x = 2 + 8 * u(random), z = 2 + 4 * u(random), radius = 1.5 + 1.5 * u(random),
+                 turn = 2 * std::numbers::pi * u(random);
+    for (int side = 0; side < 3; ++side) {
+      const double a0 = turn + side * 2 * std::numbers::pi / 3, a1 = a0 + 2 * std::numbers::pi / 3;
+      const double x0 = x + radius * std::cos(a0), z0 = z + radius * std::sin(a0),
+                   x1 = x + radius * std::cos(a1), z1 = z + radius * std::sin(a1);
+      const double e = 0.3 / std::hypot(x1 - x0, z1 - z0);
+      cuts.push_back(
+          {x0 - e * (x1 - x0), z0 - e * (z1 - z0), x1 + e * (x1 - x0), z1 + e * (z1 - z0)});
+    }
+  }
+  const Criterion criterion = u(random) < 0.5 ? Criterion::elliptic : Criterion::tensile_or_shear;
+  const double sigma0 = 1e6 * (0.5 + 5 * u(random)), factor = 1 + 3 * u(random);
+  const double total = -1e-3 * (0.2 + 2 * u(random));
+  return contact_scene(criterion, sigma0, factor, total, cuts);
+}
+
 }  // namespace
 
 TEST_CASE("Hard: contact chattering is detected and resolved by the cycle rule", "[hard]") {
-  // Found by a search over random contact scenes: pressing two crossing cuts makes the
-  // active-set iteration revisit a set of closed contacts.
-  const Scene scene = contact_scene(
-      Criterion::tensile_or_shear, 808253.16798531474, 2.3207014197303737, -0.00096172901921124938,
-      {{9.620167785408702, 4.2917322711025303, 9.1886631110060275, 6.378655628984923},
-       {2.7951068183459311, 2.5392374725946341, 6.9137162397848968, 7.5523618585338728}});
-  const RunResult result = run_scene(scene, quiet());
-  CHECK(result.summary.contact_cycles >= 1);
+  // Whether a scene makes the active-set iteration revisit a set depends on rounding: a
+  // single scene found by a search cycled with some BLAS kernels and not with others. So
+  // the test takes the first scene of a fixed family that cycles. The family cycles
+  // because of the breaks (kept intact, 1 of its first 300 scenes cycles). Measured with
+  // seven BLAS kernels (OpenBLAS SkylakeX, Haswell, Zen, SandyBridge, Nehalem, Prescott;
+  // reference BLAS), built with and without -march=native: 39 to 50 % of its scenes cycle,
+  // the first within the first 9, and never more than 11 in a row do not; 40 scenes leave
+  // practically no chance of finding none.
+  std::mt19937 random(1105);
+  Scene scene;
+  RunResult result;
+  int trial = 0;
+  do {
+    scene = pressed_triangles(random);
+    result = run_scene(scene, quiet());
+  } while (result.summary.contact_cycles == 0 && ++trial < 40);
+  INFO("scene " << trial);
+  REQUIRE(result.summary.contact_cycles >= 1);
   CHECK(snapshots_finite(result));
-  check_same_events(result, run_scene(scene, quiet()));
+  const RunResult again = run_scene(scene, quiet());
+  check_same_events(result, again);
+  CHECK(again.snapshots.back().displacement == result.snapshots.back().displacement);
 }
 
 TEST_CASE("Hard: random scenes with contact and crossing cuts all finish without NaN", "[hard]") {
@@ -651,9 +689,24 @@ TEST_CASE("Hard: updates fall back to a fresh factorization when the residual ch
   if (tolerance > 1e-15) {
     const Vector u = solver.checked_solve(1e-3);  // the updated factor suffices
     CHECK(solver.counters().factorizations == 1);
-    CHECK(model.residual(u, 1e-3).cwiseAbs().maxCoeff() / solver.load_scale(1e-3) <= tolerance);
+    CHECK(max_abs(model.residual(u, 1e-3)) / solver.load_scale(1e-3) <= tolerance);
   } else {
     CHECK_THROWS_WITH(solver.checked_solve(1e-3), Catch::Contains("after a fresh factorization"));
     CHECK(solver.counters().factorizations == 2);  // it did fall back once
+  }
+}
+TEST_CASE("Hard: pieces cut out and pressed until they slide on contacts finish without NaN",
+          "[hard]") {
+  // Cut-out triangles pressed together come loose on frictionless contacts, so the updated
+  // factor goes singular in a cascade of re-solves. Before residual checks saw NaN (Eigen's
+  // maxCoeff can skip one), a NaN re-solve could pass, the node held at it, and the run
+  // stop at the next solve: 1 to 6 of these 100 scenes did, depending on the BLAS kernel.
+  std::mt19937 random(1105);
+  for (int trial = 0; trial < 100; ++trial) {
+    const Scene scene = pressed_triangles(random);
+    INFO("scene " << trial);
+    RunResult result;
+    REQUIRE_NOTHROW(result = run_scene(scene, quiet()));
+    CHECK(snapshots_finite(result));
   }
 }

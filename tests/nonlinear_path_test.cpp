@@ -190,8 +190,8 @@ TEST_CASE("On an affine scene the CVODE path finds the closed-form first break",
                     << ", found " << event.bond << " at " << event.lambda);
   CHECK(expected.contains(event.bond));
   CHECK(std::abs(event.lambda - expected.lambda) <= 1e-8 * expected.lambda);
-  CHECK((u - affine.at(event.lambda)).cwiseAbs().maxCoeff() <=
-        1e-8 * affine.at(event.lambda).cwiseAbs().maxCoeff());
+  CHECK(max_abs(u - affine.at(event.lambda)) <=
+        1e-8 * max_abs(affine.at(event.lambda)));
   // A linear law: one factorization for the whole path.
   CHECK(path.statistics().factorizations == 1);
 
@@ -217,7 +217,7 @@ TEST_CASE("A large-kinematics scene advances to its first break in equilibrium",
   const PathEvent event = path.advance(0.0, 1e-3, u);
   REQUIRE(event.bond >= 0);
   const double residual =
-      model.residual(u, event.lambda).cwiseAbs().maxCoeff() / solver.load_scale(event.lambda);
+      max_abs(model.residual(u, event.lambda)) / solver.load_scale(event.lambda);
   CHECK(residual <= scene.solver.tolerance);
   const CriticalBond leader =
       evaluator.most_critical(model, model.full_displacement(u, event.lambda));
@@ -253,7 +253,7 @@ TEST_CASE("Without events the large-kinematics path ends at the equilibrium KINS
   CHECK(event.bond == -1);
   CHECK(event.lambda == to);
   const double load = solver.load_scale(to);
-  CHECK(model.residual(u, to).cwiseAbs().maxCoeff() <= scene.solver.tolerance * load);
+  CHECK(max_abs(model.residual(u, to)) <= scene.solver.tolerance * load);
 
   Vector direct = Vector::Zero(model.dofs.free_count);
   const EquilibriumReport report = solver.solve(to, direct);
@@ -261,6 +261,6 @@ TEST_CASE("Without events the large-kinematics path ends at the equilibrium KINS
                             << " iterations; path: " << path.statistics().steps << " steps, "
                             << path.statistics().factorizations << " factorizations, "
                             << path.statistics().refinement_iterations << " refinement iterations");
-  CHECK((u - direct).cwiseAbs().maxCoeff() <= 1e-7 * direct.cwiseAbs().maxCoeff());
+  CHECK(max_abs(u - direct) <= 1e-7 * max_abs(direct));
   CHECK(path.statistics().refinement_iterations > 0);
 }

@@ -21,13 +21,13 @@ Vector direct_solution(Model& model, const SolverOptions& options, double lambda
 }
 
 double relative_difference(const Vector& a, const Vector& b) {
-  return (a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff();
+  return max_abs(a - b) / max_abs(b);
 }
 
 double relative_residual(const Model& model, const Vector& u, double lambda) {
   const double load =
-      model.residual(Vector::Zero(model.dofs.free_count), lambda).cwiseAbs().maxCoeff();
-  return model.residual(u, lambda).cwiseAbs().maxCoeff() / load;
+      max_abs(model.residual(Vector::Zero(model.dofs.free_count), lambda));
+  return max_abs(model.residual(u, lambda)) / load;
 }
 
 // SmallKinematics that calls itself nonlinear: drives the solver's general sweep, which

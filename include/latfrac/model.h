@@ -20,6 +20,10 @@ namespace latfrac {
 
 using Vector = Eigen::VectorXd;
 
+// The largest magnitude in v (0 when empty), and infinity when any entry is NaN or
+// infinite: Eigen's maxCoeff may skip a NaN, which would let a broken solve pass a check.
+double max_abs(const Vector& v);
+
 struct DofMap {
   int dim = 2;
   std::vector<std::int64_t> free_index;  // per dof: index among free dofs, or -1 if prescribed
