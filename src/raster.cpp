@@ -81,6 +81,19 @@ void Canvas::stamp(int x, int y, const std::vector<PixelOffset>& stencil, Rgb co
   for (const PixelOffset& offset : stencil) set(x + offset.dx, y + offset.dy, colour);
 }
 
+void Canvas::disc(double x, double y, double radius, Rgb colour) {
+  const int x0 = static_cast<int>(std::ceil(x - radius)), x1 = static_cast<int>(std::floor(x + radius));
+  const int y0 = static_cast<int>(std::ceil(y - radius)), y1 = static_cast<int>(std::floor(y + radius));
+  bool painted = false;
+  for (int py = y0; py <= y1; ++py)
+    for (int px = x0; px <= x1; ++px)
+      if ((px - x) * (px - x) + (py - y) * (py - y) <= radius * radius) {
+        set(px, py, colour);
+        painted = true;
+      }
+  if (!painted) set(static_cast<int>(std::lround(x)), static_cast<int>(std::lround(y)), colour);
+}
+
 void Canvas::text(int x, int y, std::string_view text, int scale, Rgb colour) {
   for (char c : text) {
     const Glyph& glyph = glyph_for(c);

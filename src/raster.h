@@ -36,6 +36,9 @@ class Canvas final {
   void fill_rect(int x0, int y0, int x1, int y1, Rgb colour);
   void line(int x0, int y0, int x1, int y1, Rgb colour);
   void stamp(int x, int y, const std::vector<PixelOffset>& stencil, Rgb colour);
+  // Every pixel whose centre lies within `radius` of (x, y), in pixels (pixel i's centre
+  // is at i); the nearest pixel alone when no centre does.
+  void disc(double x, double y, double radius, Rgb colour);
 
   // Text in the bitmap font, each font pixel drawn as a scale x scale block. Horizontal
   // text has the top-left corner of its first character cell at (x, y); vertical text

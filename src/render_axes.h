@@ -20,10 +20,11 @@ struct AxisMap {
   double low = 0, high = 1;
   int pixel_at_low = 0, pixel_at_high = 1;
 
-  int pixel(double value) const {
-    return static_cast<int>(
-        std::lround(pixel_at_low + (value - low) / (high - low) * (pixel_at_high - pixel_at_low)));
+  // Where value lands, in pixels; pixel i covers [i - 0.5, i + 0.5).
+  double position(double value) const {
+    return pixel_at_low + (value - low) / (high - low) * (pixel_at_high - pixel_at_low);
   }
+  int pixel(double value) const { return static_cast<int>(std::lround(position(value))); }
   double pixels_per_unit() const { return std::abs(pixel_at_high - pixel_at_low) / (high - low); }
 };
 

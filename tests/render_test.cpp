@@ -91,12 +91,13 @@ void add_snapshot(RunResult& result, double lambda) {
   result.snapshots.push_back(snapshot);
 }
 
-// A triangular patch of 10 x 6 nodes in the x-z plane: node (i, k) is i + 10 k.
-RunResult triangular_patch() {
+// A triangular patch of columns x rows nodes in the x-z plane: node (i, k) is
+// i + columns k.
+RunResult triangular_patch(int columns = 10, int rows = 6) {
   RunResult result;
   result.scene = {"patch-2d", 2, spacing, "elliptic", 1.0};
-  for (int k = 0; k < 6; ++k)
-    for (int i = 0; i < 10; ++i)
+  for (int k = 0; k < rows; ++k)
+    for (int i = 0; i < columns; ++i)
       result.positions.insert(result.positions.end(), {(i + 0.5 * (k % 2)) * spacing, 0.0,
                                                        k * spacing * std::sqrt(3.0) / 2});
   add_nearest_bonds(result);
@@ -151,6 +152,40 @@ TEST_CASE("an intact 2-D patch has the requested width, a plausible height, no r
   CHECK(box_of(image, is_red).pixels == 0);
   CHECK(box_of(image, is_node_grey).pixels > 60);
   CHECK_FALSE(fs::exists(dir.file("picture.png.partial")));
+}
+
+TEST_CASE("an intact lattice shows no white line, however small its dots", "[render]") {
+  // White inside the lattice means open bonds. With dots a few pixels apart, gaps under a
+  // pixel wide once fell on the same pixel rows and drew white lines like cracks.
+  ScratchDir dir;
+  const RunResult result = triangular_patch(60, 40);
+  for (int width = 300; width <= 1400; width += 25) {
+    const Image image = render(result, dir, {width, -1});
+    const Box lattice = box_of(image, is_node_grey);
+    const double dot_spacing = (lattice.x1 - lattice.x0) / 59.5;  // about: dots overhang
+    // The inside: a margin of two spacings from the lattice's edges.
+    const int x0 = lattice.x0 + static_cast<int>(2 * dot_spacing),
+              x1 = lattice.x1 - static_cast<int>(2 * dot_spacing);
+    const int y0 = lattice.y0 + static_cast<int>(2 * dot_spacing),
+              y1 = lattice.y1 - static_cast<int>(2 * dot_spacing);
+    int longest = 0, white = 0;
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0, run = 0; x <= x1; ++x) {
+        const bool is_white = image.at(x, y)[0] == 255 && image.at(x, y)[1] == 255;
+        run = is_white ? run + 1 : 0;
+        white += is_white;
+        longest = std::max(longest, run);
+      }
+    INFO("width " << width << " px, dots " << dot_spacing << " px apart");
+    if (dot_spacing < 9.5) {
+      CHECK(white == 0);  // drawn solid
+    } else if (dot_spacing > 10.5) {
+      // Particles with a gap of a pixel or more at each bond: no pixel row runs white
+      // past a whole particle.
+      CHECK(white > 0);
+      CHECK(longest < 0.8 * dot_spacing);
+    }
+  }
 }
 
 TEST_CASE("nodes of a broken bond are red, where the bond is", "[render]") {
