@@ -40,16 +40,18 @@ run() {
     "$latfrac" render "$h5" --lambda "$lambda" -o "$figures/$id-$lambda.png" --width 900 > /dev/null
     "$latfrac" analyze "$h5" --lambda "$lambda" --json > "$out/$id-$lambda.json"
   done
-  python3 - "$id" "$seconds" "$out/$id-$early.json" "$out/$id-$last.json" <<'EOF'
+  python3 - "$id" "$seconds" "$early" "$out/$id-$early.json" "$out/$id-$last.json" <<'EOF'
 import json, sys
-rid, seconds, paths = sys.argv[1], sys.argv[2], sys.argv[3:]
+rid, seconds, early, paths = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4:]
 cells = []
 for path in paths:
     r = json.load(open(path))["faults"]
+    # A fixed-step run takes a snapshot at the first step that reaches it: say so.
+    taken = f"(taken at {r['lambda']:g}) " if path == paths[0] and abs(r["lambda"] - early) > 1e-12 else ""
     faults = [f for f in r["faults"] if not f["diffuse"]]
     diffuse = sum(f["bonds"] for f in r["faults"] if f["diffuse"])
     angles = ", ".join(f"{f['alpha_deg']:.1f}" for f in faults[:4]) or "-"
-    cells.append(f"{r['broken_bonds']} broken; {len(faults)} faults (alpha {angles}); "
+    cells.append(f"{taken}{r['broken_bonds']} broken; {len(faults)} faults (alpha {angles}); "
                  f"{diffuse} in diffuse clusters; {len(r['grabens'])} grabens")
 print(f"| {rid} | {cells[0]} | {cells[1]} | {seconds} s |")
 EOF
