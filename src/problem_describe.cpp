@@ -15,7 +15,7 @@ using problem::format_number;
 class Listing {
  public:
   void section(std::string_view title) { text_ << "[" << title << "]\n"; }
-  void off(std::string_view title) { line("[" + std::string(title) + "]", "off", ""); }
+  void off(std::string_view title) { line(std::string("[").append(title).append("]"), "off", ""); }
   void top(std::string_view key, const std::string& value) { line(std::string(key), value, ""); }
   void entry(std::string_view key, const std::string& value, std::string_view unit = "") {
     line("  " + std::string(key), value, unit);
@@ -37,8 +37,10 @@ class Listing {
 std::string on_off(bool value) { return value ? "true" : "false"; }
 
 std::string point(const std::array<double, 3>& p, int dim) {
-  if (dim == 2) return "[" + format_number(p[0]) + ", " + format_number(p[2]) + "]";
-  return "[" + format_number(p[0]) + ", " + format_number(p[1]) + ", " + format_number(p[2]) + "]";
+  std::string text = "[";
+  text.append(format_number(p[0]));
+  if (dim == 3) text.append(", ").append(format_number(p[1]));
+  return text.append(", ").append(format_number(p[2])).append("]");
 }
 
 void describe_strength(const Strength& strength, Listing& out) {

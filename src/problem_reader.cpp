@@ -295,7 +295,7 @@ std::optional<Section> Section::section(std::string_view key,
                                         std::vector<std::string_view> keys) const {
   const toml::node* node = find(key);
   if (node == nullptr) return std::nullopt;
-  const std::string title = "[" + key_path(key) + "]";
+  const std::string title = std::string("[").append(key_path(key)).append("]");
   if (!node->is_table()) {
     fail(key, "expected a table " + title + ", " + got(*node),
          "allowed: a section " + title + " with keys " + join(keys));

@@ -12,9 +12,10 @@ namespace {
 const Range poisson_range{-1, 0.25, true, false, ""};
 
 std::string coordinates(const std::array<double, 3>& point, int dim) {
-  if (dim == 2) return "(" + format_number(point[0]) + ", " + format_number(point[2]) + ")";
-  return "(" + format_number(point[0]) + ", " + format_number(point[1]) + ", " +
-         format_number(point[2]) + ")";
+  std::string text = "(";
+  text.append(format_number(point[0]));
+  if (dim == 3) text.append(", ").append(format_number(point[1]));
+  return text.append(", ").append(format_number(point[2])).append(")");
 }
 
 std::string name_of(const std::string& text) { return "\"" + text + "\""; }
