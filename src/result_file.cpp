@@ -1,6 +1,8 @@
 // Writing a RunResult to an HDF5 result file and reading it back (layout: docs/result-files.md).
 #include "latfrac/result_file.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <numeric>
 #include <system_error>
@@ -40,6 +42,34 @@ void check_sizes(const RunResult& result) {
     require_size(snapshot.bond_intact.size(), bonds, name + "bond_intact (M)");
     require_size(snapshot.bond_failure_index.size(), bonds, name + "bond_f (M)");
     require_size(snapshot.node_stress.size(), 6 * nodes, name + "node_stress (N x 6)");
+  }
+}
+
+// The last guard of "no NaN in the output": a result with a value that is not a finite
+// number is not written at all. Solvers check their residuals, so this means a bug.
+void check_finite(const RunResult& result) {
+  auto check = [](const std::vector<double>& values, const std::string& what) {
+    const auto bad = std::find_if(values.begin(), values.end(),
+                                  [](double v) { return !std::isfinite(v); });
+    if (bad != values.end()) {
+      throw Error("refusing to write a result with " + std::to_string(*bad) + " in " + what +
+                  " (entry " + std::to_string(bad - values.begin()) +
+                  "): this is a bug in latfrac; please report it with the problem file");
+    }
+  };
+  check(result.positions, "lattice/positions");
+  for (std::size_t i = 0; i < result.events.size(); ++i) {
+    check({result.events[i].lambda, result.events[i].failure_index},
+          "events (event " + std::to_string(i) + ")");
+  }
+  for (const FragmentEvent& fragment : result.fragments) check({fragment.lambda}, "fragments");
+  for (std::size_t i = 0; i < result.snapshots.size(); ++i) {
+    const Snapshot& snapshot = result.snapshots[i];
+    const std::string name = "snapshot " + std::to_string(i) + " ";
+    check({snapshot.lambda}, name + "lambda");
+    check(snapshot.displacement, name + "displacement");
+    check(snapshot.bond_failure_index, name + "bond_f");
+    check(snapshot.node_stress, name + "node_stress");
   }
 }
 
@@ -279,6 +309,7 @@ RunResult read_contents(hid_t file) {
 
 void write_result_file(const std::string& path, const RunResult& result) {
   check_sizes(result);
+  check_finite(result);
   hdf5::QuietErrors quiet;
   try {
     write_atomically(path, [&](const std::string& partial) { write_hdf5(partial, result); });

@@ -4,9 +4,11 @@
 #include <hdf5.h>
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "latfrac/error.h"
 #include "sample_result.h"
@@ -163,6 +165,23 @@ TEST_CASE("a result file is written atomically", "[io]") {
     CHECK_THAT(thrown_message<Error>([&] { write_result_file(path, result); }),
                Catch::Matchers::Contains("snapshot 1 node_stress"));
     CHECK(std::filesystem::is_empty(scratch.file("")));
+  }
+  SECTION("a NaN or an infinity anywhere is refused before anything is created") {
+    const std::string path = scratch.file("graben.h5");
+    const double bad = GENERATE(std::nan(""), std::numeric_limits<double>::infinity());
+    auto refused = [&](auto&& spoil, const std::string& where) {
+      RunResult result = sample_result();
+      spoil(result);
+      CHECK_THAT(thrown_message<Error>([&] { write_result_file(path, result); }),
+                 Catch::Matchers::Contains(where) && Catch::Matchers::Contains("bug"));
+      CHECK(std::filesystem::is_empty(scratch.file("")));
+    };
+    refused([&](RunResult& r) { r.snapshots[1].displacement[7] = bad; },
+            "snapshot 1 displacement (entry 7)");
+    refused([&](RunResult& r) { r.snapshots[0].node_stress[29] = bad; }, "snapshot 0 node_stress");
+    refused([&](RunResult& r) { r.snapshots[0].bond_failure_index[2] = bad; }, "snapshot 0 bond_f");
+    refused([&](RunResult& r) { r.events[2].lambda = bad; }, "events (event 2)");
+    refused([&](RunResult& r) { r.positions[4] = bad; }, "lattice/positions");
   }
 }
 
