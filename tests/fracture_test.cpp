@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
+#include <set>
 
 #include "final_state.h"
 #include "latfrac/equilibrium.h"
@@ -105,6 +106,32 @@ TEST_CASE("The first bond breaks at the first step past its analytic load", "[fr
   CHECK(first.failure_index == Approx(100e9 * 6e-4 / 50e6).epsilon(1e-9));
   CHECK(first.mode == 0);
   CHECK(result.summary.breaks == static_cast<std::int64_t>(result.events.size()));
+}
+
+TEST_CASE("On an affine scene a fixed step without a break needs no solve", "[fracture]") {
+  // Equilibrium is u_g + lambda u_e (docs/model.md): one two-column solve gives every step.
+  Scene scene = fracture_scene(Criterion::elliptic, 1e30);  // nothing breaks
+  scene.gravity = Gravity{9.81};
+  scene.loading.total = 0.04;
+  for (double increment : {1e-3, 1e-4}) {
+    scene.stepping.increment = increment;
+    const RunResult result = run_scene(scene, {});
+    INFO("ds " << increment);
+    CHECK(result.summary.breaks == 0);
+    CHECK(result.summary.solves == 1);
+    CHECK(result.summary.factorizations == 1);
+  }
+  // With breaks: a re-solve per break, a new path at the step after a cascade, and a
+  // solve after each fresh factorization (a part held); the other steps still cost none.
+  scene.strength = testing::strength_of(Criterion::tensile, 50e6);
+  scene.stepping.increment = 1e-4;
+  const RunResult broken = run_scene(scene, {});
+  REQUIRE(broken.summary.breaks > 0);
+  std::set<double> cascades;
+  for (const BreakEvent& event : broken.events) cascades.insert(event.lambda);
+  INFO(broken.summary.breaks << " breaks at " << cascades.size() << " steps of 400");
+  CHECK(broken.summary.solves <= 1 + broken.summary.breaks + std::ssize(cascades) +
+                                     broken.summary.factorizations);
 }
 
 TEST_CASE("Contact across a pre-cut transmits the load when pressed and none when pulled",
