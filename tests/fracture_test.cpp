@@ -91,6 +91,27 @@ TEST_CASE("Re-solves at one lambda after breaks and contact switches match a fre
   CHECK(relative_difference(u, reference) < 1e-10);
 }
 
+TEST_CASE("After solver.refactor_every updates the next break refactorizes", "[fracture][solver]") {
+  Scene scene = testing::box_scene(2, 1.0, {20.0, 0, 10.0}, true);
+  scene.solver.refactor_every = 10;
+  Model model = build_model(scene);
+  EquilibriumSolver solver(model, scene.solver);
+  solver.checked_solve(1e-3);
+  int breaks = 0;
+  testing::for_random_supported_breaks(model, 35, 7, [&](std::int64_t bond) {
+    solver.remove_bond(bond);
+    solver.checked_solve(1e-3);
+    ++breaks;
+  });
+  // Breaks 1-10 update the factor; the 11th finds 10 updates and refactorizes instead;
+  // 12-21 update; 22 refactorizes; 23-32 update; 33 refactorizes; 34 and 35 update.
+  CHECK(breaks == 35);
+  CHECK(solver.counters().factorizations == 4);
+  CHECK(solver.counters().factor_updates == 32);
+  EquilibriumSolver fresh(model, scene.solver);
+  CHECK(relative_difference(solver.checked_solve(1e-3), fresh.checked_solve(1e-3)) < 1e-10);
+}
+
 TEST_CASE("The first bond breaks at the first step past its analytic load", "[fracture]") {
   // Rollers on top and base and extension walls: the exact state is u_x = lambda (x - c),
   // u_z = 0, so every horizontal bond has sigma_n = E lambda and the tensile criterion
