@@ -52,17 +52,30 @@ void check(const cholmod_common& common, bool ok, const char* call) {
   throw Error(std::string(call) + " failed: " + status_text(common.status));
 }
 
-// OpenBLAS's own threads compete with CHOLMOD's supernodal kernels on a small machine:
-// on 2 cores a 3-D factorization takes twice as long with two BLAS threads as with one
-// (bench/bench_equilibrium). One BLAS thread is the default; OPENBLAS_NUM_THREADS, when
-// the user sets it, wins. Looked up at run time so any BLAS links.
-void limit_blas_threads() {
+// Threads compete on a small machine. OpenBLAS's threads compete with CHOLMOD's
+// supernodal kernels: on 2 cores a 3-D factorization takes twice as long with two BLAS
+// threads as with one. CHOLMOD's own OpenMP loops (built for 4 threads) cost more than
+// they give: on 2 cores a 2-D factorization of 100k nodes took 1.43 s with them and
+// 0.93 s without (bench/bench_equilibrium). So both run one thread by default; a user
+// who sets OPENBLAS_NUM_THREADS, or OMP_NUM_THREADS or OMP_THREAD_LIMIT, keeps that
+// library's setting. Looked up at run time so any BLAS and OpenMP runtime link. OpenMP's
+// max-active-levels of 0 runs every parallel region on one thread, even one that asks
+// for a number of threads explicitly, as CHOLMOD's do.
+void limit_threads() {
   static std::once_flag once;
   std::call_once(once, [] {
-    if (std::getenv("OPENBLAS_NUM_THREADS")) return;
-    using SetThreads = void (*)(int);
-    if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
-      set(1);
+    if (!std::getenv("OPENBLAS_NUM_THREADS")) {
+      using SetThreads = void (*)(int);
+      if (auto set =
+              reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
+        set(1);
+    }
+    if (!std::getenv("OMP_NUM_THREADS") && !std::getenv("OMP_THREAD_LIMIT")) {
+      using SetLevels = void (*)(int);
+      if (auto set =
+              reinterpret_cast<SetLevels>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels")))
+        set(0);
+    }
   });
 }
 
@@ -86,7 +99,7 @@ cholmod_sparse view_of(StiffnessMatrix& matrix) {
 }  // namespace
 
 CholeskyFactor::CholeskyFactor(Ordering ordering) : state_(std::make_unique<State>()) {
-  limit_blas_threads();
+  limit_threads();
   cholmod_common& c = state_->common;
   if (!cholmod_l_start(&c)) throw Error("cholmod_l_start failed");
   c.print = 0;
