@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <string>
 
@@ -28,8 +29,10 @@ FractureContinuation::FractureContinuation(Model& model, const Scene& scene,
 
 // The safety net behind the support check: a piece held only by frictionless contacts
 // (stiff along their normals alone) can still slide, which no connectivity check sees.
-// When a factorization finds no stiffness, the node of the unknown where it showed is
-// held at its last known displacement, recorded as a fragment, and the solve tried again
+// When a factorization finds no stiffness, the unknown where it showed is held at its last
+// known displacement (that one dof: a zero-energy mode is non-zero there, so holding it
+// removes the mode, and holding the node's other axes could hold a direction in which the
+// piece is supported), recorded as a one-node fragment, and the solve tried again
 // (docs/robustness.md).
 template <typename Solve>
 auto FractureContinuation::holding_singular(double lambda, Solve solve) {
@@ -37,12 +40,12 @@ auto FractureContinuation::holding_singular(double lambda, Solve solve) {
     try {
       return solve();
     } catch (const SingularStiffness& singular) {
-      if (singular.unknown() < 0 || attempt > model_.lattice.node_count()) throw;
+      if (singular.unknown() < 0 || attempt > model_.dofs.dof_count()) throw;
       std::int64_t dof = 0;
       while (dof < model_.dofs.dof_count() && model_.dofs.free_index[dof] != singular.unknown()) ++dof;
       if (dof == model_.dofs.dof_count()) throw;
-      FragmentDetector::LoosePart part{{dof / model_.dim()}, {}};
-      for (int c = 0; c < model_.dim(); ++c) part.free_components.push_back(c);
+      const FragmentDetector::LoosePart part{{dof / model_.dim()},
+                                             {static_cast<int>(dof % model_.dim())}};
       const Vector last = state_.size() == model_.dofs.free_count ? model_.full_displacement(state_, lambda)
                                                                   : Vector::Zero(model_.dofs.dof_count());
       hold_part(model_, part, last);
@@ -295,16 +298,29 @@ void FractureContinuation::run_event_driven(RunResult& result) {
   double lambda = 0;
   if (model_.contact) settle_contacts(lambda);
   cascade(lambda, result);
+  // Contact switches at one lambda (ties, or a contact already at dn = 0) are taken one by
+  // one. Should they come back to an active set met before at that lambda, they cycle:
+  // the rest of the switches due there are left to settle_contacts, which ends cycles by
+  // its own rule (docs/robustness.md).
+  std::set<std::vector<std::uint8_t>> sets_at_lambda;
+  double sets_lambda = std::numeric_limits<double>::quiet_NaN();
+  bool switch_at_lambda = true;
   while (lambda != total) {
     const AffinePath& path = current_path(lambda);
     const PathCrossing crossing = next_break(model_, evaluator_, path, lambda, total);
     const PathCrossing contact =
-        model_.contact ? next_contact_switch(model_, path, lambda, total) : PathCrossing{};
+        model_.contact ? next_contact_switch(model_, path, lambda, total, switch_at_lambda)
+                       : PathCrossing{};
     const bool contact_first =
         contact.found() &&
         (!crossing.found() || std::abs(contact.lambda) < std::abs(crossing.lambda));
     const double next = contact_first ? contact.lambda : crossing.found() ? crossing.lambda : total;
     record_snapshots_until(next, false);
+    if (next != sets_lambda) {
+      sets_at_lambda.clear();
+      sets_lambda = next;
+      switch_at_lambda = true;
+    }
     lambda = next;
     if (contact_first) {
       const bool close = !model_.contact_active[contact.bond];
@@ -315,6 +331,10 @@ void FractureContinuation::run_event_driven(RunResult& result) {
       resolve(lambda);
       settle_contacts(lambda);
       cascade(lambda, result);
+      if (!sets_at_lambda.insert(model_.contact_active).second) {
+        switch_at_lambda = false;
+        ++chattering_resolved_;
+      }
     } else if (crossing.found()) {
       // Every bond that reached f = 1 at this lambda, within rounding, breaks now.
       const std::int64_t cascade_id = next_cascade_++;
@@ -370,6 +390,10 @@ void FractureContinuation::run_integrated_events(RunResult& result) {
       }
       break_group(group, lambda, next_cascade_++, result);
       cascade(lambda, result, next_cascade_ - 1);
+    } else if (model_.contact) {
+      // At a snapshot or the end: the contacts the path has crossed switch here.
+      settle_contacts(lambda);
+      cascade(lambda, result);
     }
     progress_.update(lambda, breaks_);
   }

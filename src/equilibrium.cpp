@@ -269,10 +269,13 @@ void EquilibriumSolver::set_contact(std::int64_t bond, bool active) {
                 /*downdate=*/!active);
 }
 
+// Without load (no gravity at lambda = 0) the solution is 0 and any finite result passes;
+// a NaN from a singular factor must not.
 double EquilibriumSolver::relative_residual(const Vector& free_displacement, double lambda) {
   const double load = load_scale(lambda);
-  if (load == 0) return 0;
-  return max_abs(model_.residual(free_displacement, lambda)) / load;
+  const double residual = max_abs(model_.residual(free_displacement, lambda));
+  if (load == 0) return std::isfinite(residual) ? 0 : residual;
+  return residual / load;
 }
 
 namespace {

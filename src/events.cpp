@@ -119,7 +119,7 @@ PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
 }
 
 PathCrossing next_contact_switch(const Model& model, const AffinePath& path, double from,
-                                 double to) {
+                                 double to, bool at_from) {
   const double sign = to < from ? -1.0 : 1.0;
   const double s_from = sign * from, s_to = sign * to;
   const FullPath full = full_path(model, path);
@@ -134,8 +134,10 @@ PathCrossing next_contact_switch(const Model& model, const AffinePath& path, dou
     // dn(s) = dn0 + rate s: an active contact opens when it rises through 0, an open one
     // closes when it falls through 0.
     if (rate == 0 || (active && rate < 0) || (!active && rate > 0)) continue;
-    const double s = -dn0 / rate;
-    if (s > s_from && s <= s_to && s < first) {
+    const bool past = active ? dn0 + rate * s_from >= 0 : dn0 + rate * s_from <= 0;
+    if (past && !at_from) continue;
+    const double s = past ? s_from : -dn0 / rate;
+    if ((past || s > s_from) && s <= s_to && s < first) {
       first = s;
       event.bond = b;
     }

@@ -11,6 +11,8 @@
 #include <random>
 #include <set>
 
+#include "latfrac/error.h"
+
 #include "final_state.h"
 #include "latfrac/equilibrium.h"
 #include "latfrac/fragments.h"
@@ -708,5 +710,75 @@ TEST_CASE("Hard: pieces cut out and pressed until they slide on contacts finish 
     RunResult result;
     REQUIRE_NOTHROW(result = run_scene(scene, quiet()));
     CHECK(snapshots_finite(result));
+  }
+}
+namespace {
+
+// A random scene of any kind the problem files allow, 2-D or 3-D: any criterion and bond
+// stress reading, extension or compression, event or fixed steps, pre-cuts, and each of
+// gravity, contact, heterogeneity, a stiff or soft layer and large kinematics by chance.
+Scene random_scene(int trial) {
+  std::mt19937 random(7000 + trial);
+  std::uniform_real_distribution<double> u(0, 1);
+  const int dim = u(random) < 0.7 ? 2 : 3;
+  const bool gravity = u(random) < 0.5;
+  Scene scene = dim == 2 ? testing::box_scene(2, 1.0, {12.0, 0, 8.0}, gravity)
+                         : testing::box_scene(3, 1.0, {6.0, 4.0, 5.0}, gravity);
+  const auto criterion = static_cast<Criterion>(static_cast<int>(4 * u(random)));
+  const double total = (u(random) < 0.6 ? 1 : -1) * 1e-3 * (0.2 + 3 * u(random));
+  scene.loading.total = total;
+  scene.strength = strength_of(criterion, 100e9 * std::abs(total) * (0.05 + u(random)));
+  scene.strength->friction_angle = 20 + 25 * u(random);
+  scene.strength->tau0_factor = 1 + 3 * u(random);
+  if (criterion != Criterion::drucker_prager)
+    scene.strength->bond_stress = static_cast<BondStress>(static_cast<int>(3 * u(random)));
+  const int cuts = static_cast<int>(4 * u(random));
+  for (int c = 0; c < cuts; ++c) {
+    if (dim == 2) {
+      const double x0 = 12 * u(random), z0 = 8 * u(random), x1 = 12 * u(random),
+                   z1 = 8 * u(random);
+      scene.precuts.push_back({{x0, 0, z0}, {x1, 0, z1}, {}, {}, {}});
+    } else {
+      const double x0 = 1 + 4 * u(random), z0 = 1 + 3 * u(random),
+                   angle = std::numbers::pi * u(random);
+      scene.precuts.push_back(
+          {{}, {}, {x0, -0.5, z0}, {0, 5.0, 0}, {2 * std::cos(angle), 0, 2 * std::sin(angle)}});
+    }
+  }
+  if (u(random) < 0.5) scene.contact = Contact{};
+  if (u(random) < 0.3)
+    scene.heterogeneity = Heterogeneity{0.8 * u(random), static_cast<std::uint64_t>(trial)};
+  if (u(random) < 0.2) {
+    Layer layer;
+    layer.z_min = 2 + 2 * u(random);
+    layer.z_max = layer.z_min + 1 + 2 * u(random);
+    layer.material = scene.material;
+    layer.material.young *= std::pow(10.0, 4 * u(random) - 2);
+    scene.layers.push_back(layer);
+  }
+  scene.large_kinematics = u(random) < 0.15;
+  if (u(random) < 0.5)
+    scene.stepping = {SteppingMethod::event, 0};
+  else
+    scene.stepping = {SteppingMethod::fixed, std::abs(total) / (1 + 50 * u(random))};
+  return scene;
+}
+
+}  // namespace
+
+TEST_CASE("Hard: 130 random scenes of every kind end in equilibrium, part by part", "[hard]") {
+  // Found by this search, fixed in docs/model.md and docs/robustness.md: event-driven
+  // contact left contacts tied with a switch penetrating for the rest of the path (trials
+  // 13, 15, 18, 60, 75: residuals up to 0.2 of the load); the large-kinematics route did
+  // not settle contacts at the end (86); and the singular-stiffness safety net held a
+  // node along an axis in which its part was supported, so the walls pushed against the
+  // hold (126: 0.17 of the load). 600 scenes pass with three BLAS kernels.
+  for (int trial = 0; trial < 130; ++trial) {
+    const Scene scene = random_scene(trial);
+    INFO("trial " << trial);
+    RunResult result;
+    REQUIRE_NOTHROW(result = run_scene(scene, quiet()));
+    CHECK(snapshots_finite(result));
+    CHECK(balance(final_state(scene, result)).relative_residual <= 1e-9);
   }
 }

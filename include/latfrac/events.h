@@ -31,8 +31,12 @@ PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
                         const AffinePath& path, double from, double to);
 
 // The first contact that opens (active, dn rising through 0) or closes (open, dn falling
-// through 0) after `from` and no later than `to`; lowest bond id on ties.
+// through 0) after `from` and no later than `to`; lowest bond id on ties. A contact whose
+// dn is already at or past 0 at `from` and still moving the wrong way switches at `from`
+// itself: a tie with the switch just made, or roundoff, must not leave it penetrating (or
+// pulling) for the rest of the path. `at_from = false` skips those (the caller's guard
+// when switches at one lambda cycle).
 PathCrossing next_contact_switch(const Model& model, const AffinePath& path, double from,
-                                 double to);
+                                 double to, bool at_from = true);
 
 }  // namespace latfrac
