@@ -88,8 +88,9 @@ class EquilibriumSolver {
   CholeskyFactor& factor() { return factor_; }
 
  private:
-  struct Kinsol;
+  struct Kinsol;  // equilibrium_newton.cpp
   friend struct Kinsol;
+  void reset_kinsol();
   void refactorize(const Vector& free_displacement, double lambda);
   // The loads on the free dofs at zero free displacement: load0 (gravity and the fixed
   // part of the supports) and load1 (per unit lambda), so that R(0, lambda) = -(load0 +
