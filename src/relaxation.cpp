@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "latfrac/error.h"
@@ -137,11 +138,14 @@ class LinearNodes {
     }
   }
 
+  // Infinity when a force is not finite: std::max would skip a NaN.
   double max_force(const Vector& u) const {
     double largest = 0;
     for (std::int64_t n = 0; n + 1 < static_cast<std::int64_t>(first_.size()); ++n) {
       if (free_[n].isZero()) continue;
-      largest = std::max(largest, force(u, n).cwiseProduct(free_[n]).cwiseAbs().maxCoeff());
+      const auto f = force(u, n).cwiseProduct(free_[n]).eval();
+      if (!f.allFinite()) return std::numeric_limits<double>::infinity();
+      largest = std::max(largest, f.cwiseAbs().maxCoeff());
     }
     return largest;
   }
@@ -204,7 +208,9 @@ class GeneralNodes {
       if (!free_axes_[n]) continue;
       const Vec3 f = force(u, n, nullptr);
       for (int a = 0; a < 3; ++a) {
-        if (free_axes_[n] & (1u << a)) largest = std::max(largest, std::abs(f[a]));
+        if (!(free_axes_[n] & (1u << a))) continue;
+        if (!std::isfinite(f[a])) return std::numeric_limits<double>::infinity();
+        largest = std::max(largest, std::abs(f[a]));
       }
     }
     return largest;

@@ -155,6 +155,22 @@ TEST_CASE("Relaxation from the exact solution stops at the first check", "[relax
   CHECK(relative_difference(u, exact) < 1e-6);
 }
 
+TEST_CASE("A NaN in the state is never reported as converged", "[relaxation]") {
+  // The residual check must see a NaN wherever it sits: std::max(largest, NaN) keeps
+  // largest, so a plain running maximum skips it.
+  const bool general = GENERATE(false, true);
+  Scene scene = testing::box_scene(2, 1.0, {12.0, 0, 6.0}, true);
+  Model model = build_model(scene);
+  const double lambda = 2e-4;
+  Vector u = direct_solution(model, scene.solver, lambda);
+  if (general) model.law = std::make_unique<FlaggedNonlinear>();
+  u[u.size() / 2] = std::nan("");
+  const RelaxationReport report = RelaxationSolver(model, scene.solver).solve(model, lambda, u);
+  INFO((general ? "general" : "linear") << " sweep: residual " << report.relative_residual);
+  CHECK_FALSE(report.converged);
+  CHECK_FALSE(std::isfinite(report.relative_residual));
+}
+
 TEST_CASE("The sweep cap stops relaxation without an exception", "[relaxation]") {
   Scene scene = testing::box_scene(2, 1.0, {12.0, 0, 6.0}, true);
   scene.solver.relaxation_max_sweeps = 3;
