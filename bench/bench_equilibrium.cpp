@@ -56,24 +56,24 @@ void run_case(int dim, long nodes) {
     // The bare objects are freed before KINSOL runs, so that both sides allocate into the
     // same warm memory; otherwise KINSOL alone pays for first-touch page faults.
     {
-    start = std::chrono::steady_clock::now();
-    StiffnessMatrix stiffness(model);
-    stiffness.assemble(model, Vector::Zero(model.dofs.dof_count()));
-    assemble = std::min(assemble, seconds_since(start));
-    CholeskyFactor factor(scene.solver.ordering);
-    start = std::chrono::steady_clock::now();
-    factor.analyze(stiffness);
-    analyze = std::min(analyze, seconds_since(start));
-    start = std::chrono::steady_clock::now();
-    factor.factorize(stiffness);
-    factorize = std::min(factorize, seconds_since(start));
-    Eigen::MatrixXd rhs(n, 2);
-    rhs.col(0) = -model.residual(Vector::Zero(n), 0.0);
-    rhs.col(1) = -model.residual(Vector::Zero(n), 1.0) - rhs.col(0);
-    start = std::chrono::steady_clock::now();
-    factor.solve(rhs.data(), n, 2);
-    solve = std::min(solve, seconds_since(start));
-    factor_entries = factor.factor_nonzeros();
+      start = std::chrono::steady_clock::now();
+      StiffnessMatrix stiffness(model);
+      stiffness.assemble(model, Vector::Zero(model.dofs.dof_count()));
+      assemble = std::min(assemble, seconds_since(start));
+      CholeskyFactor factor(scene.solver.ordering);
+      start = std::chrono::steady_clock::now();
+      factor.analyze(stiffness);
+      analyze = std::min(analyze, seconds_since(start));
+      start = std::chrono::steady_clock::now();
+      factor.factorize(stiffness);
+      factorize = std::min(factorize, seconds_since(start));
+      Eigen::MatrixXd rhs(n, 2);
+      rhs.col(0) = -model.residual(Vector::Zero(n), 0.0);
+      rhs.col(1) = -model.residual(Vector::Zero(n), 1.0) - rhs.col(0);
+      start = std::chrono::steady_clock::now();
+      factor.solve(rhs.data(), n, 2);
+      solve = std::min(solve, seconds_since(start));
+      factor_entries = factor.factor_nonzeros();
     }
 
     // KINSOL from a zero guess at lambda = 0.01: residuals, tangent, analysis,

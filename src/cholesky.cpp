@@ -56,7 +56,7 @@ void check(const cholmod_common& common, bool ok, const char* call) {
 // supernodal kernels: on 2 cores a 3-D factorization takes twice as long with two BLAS
 // threads as with one. CHOLMOD's own OpenMP loops (built for 4 threads) cost more than
 // they give: on 2 cores a 2-D factorization of 100k nodes took 1.43 s with them and
-// 0.93 s without (bench/bench_equilibrium). So both run one thread by default; a user
+// 0.98 s without (bench/bench_equilibrium). So both run one thread by default; a user
 // who sets OPENBLAS_NUM_THREADS, or OMP_NUM_THREADS or OMP_THREAD_LIMIT, keeps that
 // library's setting. Looked up at run time so any BLAS and OpenMP runtime link. OpenMP's
 // max-active-levels of 0 runs every parallel region on one thread, even one that asks

@@ -63,7 +63,7 @@ TEST_CASE("A scene with a rigid-body motion fails with a message naming the call
 }
 
 TEST_CASE("Residual checks see a NaN or an infinity wherever it sits", "[equilibrium]") {
-  // A residual check that misses a NaN accepts a broken solve (tests/hard_cases_test.cpp).
+  // A residual check that misses a NaN accepts a broken solve (tests/contact_cases_test.cpp).
   for (int size : {1, 2, 7, 64}) {
     for (int at = 0; at < size; ++at) {
       for (double bad : {std::nan(""), -std::numeric_limits<double>::infinity()}) {
