@@ -9,15 +9,15 @@
 #include <iostream>
 #include <limits>
 
-#include "latfrac/error.h"
-#include "latfrac/fault_analysis.h"
-#include "latfrac/problem_file.h"
-#include "latfrac/render.h"
-#include "latfrac/result_file.h"
-#include "latfrac/run.h"
-#include "latfrac/size_estimate.h"
-#include "latfrac/study.h"
-#include "latfrac/xdmf.h"
+#include "latfrac/base/error.h"
+#include "latfrac/analysis/fault_analysis.h"
+#include "latfrac/io/problem_file.h"
+#include "latfrac/render/render.h"
+#include "latfrac/io/result_file.h"
+#include "latfrac/scene/run.h"
+#include "latfrac/scene/size_estimate.h"
+#include "latfrac/study/study.h"
+#include "latfrac/io/xdmf.h"
 
 namespace fs = std::filesystem;
 using namespace latfrac;

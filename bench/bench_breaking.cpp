@@ -13,8 +13,9 @@
 #include <string>
 
 #include "bench_cases.h"
-#include "latfrac/equilibrium.h"
-#include "latfrac/fracture.h"
+#include "latfrac/solvers/equilibrium.h"
+#include "latfrac/criteria/failure_evaluator.h"
+#include "latfrac/scene/model_builder.h"
 #include "random_breaks.h"
 
 using namespace latfrac;

@@ -11,7 +11,8 @@
 #include <string>
 
 #include "bench_cases.h"
-#include "latfrac/equilibrium.h"
+#include "latfrac/solvers/equilibrium.h"
+#include "latfrac/scene/model_builder.h"
 
 using namespace latfrac;
 

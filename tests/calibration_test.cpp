@@ -1,9 +1,9 @@
 // Cauchy-Born: the bond sum reproduces the isotropic elastic tensor of (E, nu).
-#include "latfrac/calibration.h"
+#include "latfrac/mechanics/calibration.h"
 
 #include <catch2/catch.hpp>
 
-#include "latfrac/error.h"
+#include "latfrac/base/error.h"
 #include "scenes.h"
 
 using namespace latfrac;

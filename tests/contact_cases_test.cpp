@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "hard_case_checks.h"
-#include "latfrac/run.h"
+#include "latfrac/scene/run.h"
 #include "scenes.h"
 
 using namespace latfrac;

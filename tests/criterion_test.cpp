@@ -1,12 +1,12 @@
 // Failure indices, break modes and strength resolution against hand computations.
-#include "latfrac/criterion.h"
+#include "latfrac/criteria/criterion.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 #include <numbers>
 
-#include "latfrac/error.h"
+#include "latfrac/base/error.h"
 
 using namespace latfrac;
 

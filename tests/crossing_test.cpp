@@ -1,13 +1,13 @@
 // Closed-form crossings against sampling + bisection of f, and hand-solved edge cases.
-#include "latfrac/crossing.h"
+#include "latfrac/criteria/crossing.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 #include <random>
 
-#include "latfrac/criterion.h"
-#include "latfrac/error.h"
+#include "latfrac/criteria/criterion.h"
+#include "latfrac/base/error.h"
 
 using namespace latfrac;
 

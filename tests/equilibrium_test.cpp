@@ -1,11 +1,11 @@
 // KINSOL + CHOLMOD: one Newton iteration on an affine scene, the affine path, failures.
-#include "latfrac/equilibrium.h"
+#include "latfrac/solvers/equilibrium.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 
-#include "latfrac/error.h"
+#include "latfrac/base/error.h"
 #include "scenes.h"
 
 using namespace latfrac;

@@ -5,9 +5,10 @@
 #include <map>
 #include <set>
 
-#include "latfrac/continuation.h"
-#include "latfrac/model.h"
-#include "latfrac/run.h"
+#include "latfrac/fracture/continuation.h"
+#include "latfrac/fracture/initial_supports.h"
+#include "latfrac/mechanics/model.h"
+#include "latfrac/scene/run.h"
 #include "scenes.h"
 
 using namespace latfrac;
@@ -187,9 +188,11 @@ TEST_CASE("On an affine scene the CVODE route and the closed-form route agree", 
   const RunResult closed_form = run_scene(scene, {});
   // The same scene through the general route: CVODE with root finding, KINSOL corrections.
   Model model = build_model(scene);
+  prepare_supports(model, scene.source_path);
   EquilibriumSolver solver(model, scene.solver);
   ProgressLine progress(false);
-  FractureContinuation continuation(model, scene, solver, progress);
+  FractureContinuation continuation(model, *scene.strength, schedule_of(scene), scene.solver,
+                                    solver, progress);
   continuation.use_integrated_path(true);
   RunResult integrated;
   continuation.run_event_driven(integrated);

@@ -1,5 +1,5 @@
 // Fault analysis: synthetic broken-bond sets of known geometry, against their angles and counts.
-#include "latfrac/fault_analysis.h"
+#include "latfrac/analysis/fault_analysis.h"
 
 #include <algorithm>
 #include <array>
@@ -12,7 +12,7 @@
 #include <limits>
 #include <random>
 
-#include "latfrac/error.h"
+#include "latfrac/base/error.h"
 
 using namespace latfrac;
 

@@ -2,8 +2,9 @@
 // independently of the run (residuals, reactions, contact forces).
 #pragma once
 
-#include "latfrac/model.h"
-#include "latfrac/run_result.h"
+#include "latfrac/mechanics/model.h"
+#include "latfrac/fracture/run_result.h"
+#include "latfrac/scene/model_builder.h"
 
 namespace latfrac::testing {
 

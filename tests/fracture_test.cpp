@@ -6,9 +6,9 @@
 #include <set>
 
 #include "final_state.h"
-#include "latfrac/equilibrium.h"
-#include "latfrac/fragments.h"
-#include "latfrac/run.h"
+#include "latfrac/solvers/equilibrium.h"
+#include "latfrac/mechanics/fragments.h"
+#include "latfrac/scene/run.h"
 #include "random_breaks.h"
 #include "scenes.h"
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "final_state.h"
-#include "latfrac/run.h"
+#include "latfrac/scene/run.h"
 
 namespace latfrac::testing {
 

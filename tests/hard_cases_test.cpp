@@ -12,10 +12,10 @@
 
 #include "final_state.h"
 #include "hard_case_checks.h"
-#include "latfrac/equilibrium.h"
-#include "latfrac/fragments.h"
-#include "latfrac/node_stress.h"
-#include "latfrac/run.h"
+#include "latfrac/solvers/equilibrium.h"
+#include "latfrac/mechanics/fragments.h"
+#include "latfrac/mechanics/node_stress.h"
+#include "latfrac/scene/run.h"
 #include "random_breaks.h"
 #include "scenes.h"
 

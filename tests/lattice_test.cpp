@@ -1,11 +1,11 @@
 // Lattice geometry: coordination, bond lengths, faces, and rejected boxes.
-#include "latfrac/lattice.h"
+#include "latfrac/geometry/lattice.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "latfrac/error.h"
-#include "latfrac/size_estimate.h"
+#include "latfrac/base/error.h"
+#include "latfrac/scene/size_estimate.h"
 
 using namespace latfrac;
 

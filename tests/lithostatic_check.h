@@ -6,8 +6,9 @@
 #include <cmath>
 #include <cstdint>
 
-#include "latfrac/model.h"
-#include "latfrac/node_stress.h"
+#include "latfrac/mechanics/model.h"
+#include "latfrac/mechanics/node_stress.h"
+#include "latfrac/scene/scene.h"
 
 namespace latfrac::testing {
 

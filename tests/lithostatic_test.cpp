@@ -3,8 +3,8 @@
 // without gravity: wall stress over strain is the plane-strain modulus E / (1 - nu^2).
 #include <catch2/catch.hpp>
 
-#include "latfrac/equilibrium.h"
-#include "latfrac/node_stress.h"
+#include "latfrac/solvers/equilibrium.h"
+#include "latfrac/mechanics/node_stress.h"
 #include "lithostatic_check.h"
 #include "scenes.h"
 

@@ -1,6 +1,6 @@
 // The large-kinematics law (tangent, rigid rotation) and the CVODE path: on an affine scene
 // it finds the closed-form first break, on a large-kinematics scene it ends in equilibrium.
-#include "latfrac/nonlinear_path.h"
+#include "latfrac/solvers/nonlinear_path.h"
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -8,10 +8,10 @@
 #include <limits>
 #include <random>
 
-#include "latfrac/bond_law.h"
-#include "latfrac/crossing.h"
-#include "latfrac/equilibrium.h"
-#include "latfrac/fracture.h"
+#include "latfrac/mechanics/bond_law.h"
+#include "latfrac/criteria/crossing.h"
+#include "latfrac/solvers/equilibrium.h"
+#include "latfrac/criteria/failure_evaluator.h"
 #include "scenes.h"
 
 using namespace latfrac;

@@ -2,9 +2,9 @@
 // equilibrium, and the interior's virial stress is C : eps.
 #include <catch2/catch.hpp>
 
-#include "latfrac/calibration.h"
-#include "latfrac/equilibrium.h"
-#include "latfrac/node_stress.h"
+#include "latfrac/mechanics/calibration.h"
+#include "latfrac/solvers/equilibrium.h"
+#include "latfrac/mechanics/node_stress.h"
 #include "scenes.h"
 
 using namespace latfrac;

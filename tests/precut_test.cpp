@@ -1,5 +1,5 @@
 // Pre-cuts: which bonds a cut severs, against a brute-force count on the node positions.
-#include "latfrac/precut.h"
+#include "latfrac/geometry/precut.h"
 
 #include <algorithm>
 #include <catch2/catch.hpp>

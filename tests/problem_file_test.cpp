@@ -1,12 +1,12 @@
 // Tests of the problem-file reader: the Scene it builds and the message of every error.
-#include "latfrac/problem_file.h"
+#include "latfrac/io/problem_file.h"
 
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 
-#include "latfrac/error.h"
+#include "latfrac/base/error.h"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <random>
 
-#include "latfrac/equilibrium.h"
-#include "latfrac/fragments.h"
+#include "latfrac/solvers/equilibrium.h"
+#include "latfrac/mechanics/fragments.h"
 
 namespace latfrac::testing {
 

@@ -1,11 +1,11 @@
 // Over-relaxed Gauss-Seidel against the direct solver, the lithostatic column, the sweep cap.
-#include "latfrac/relaxation.h"
+#include "latfrac/solvers/relaxation.h"
 
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "latfrac/equilibrium.h"
-#include "latfrac/node_stress.h"
+#include "latfrac/solvers/equilibrium.h"
+#include "latfrac/mechanics/node_stress.h"
 #include "lithostatic_check.h"
 #include "scenes.h"
 

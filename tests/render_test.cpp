@@ -1,5 +1,5 @@
 // Tests of the cross-section pictures: size, red exactly at broken bonds, 3-D slice, I/O.
-#include "latfrac/render.h"
+#include "latfrac/render/render.h"
 
 #include <png.h>
 #include <unistd.h>
@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "bitmap_font.h"
-#include "latfrac/error.h"
+#include "latfrac/base/error.h"
 #include "raster.h"
 
 namespace fs = std::filesystem;

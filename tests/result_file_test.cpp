@@ -1,5 +1,5 @@
 // Tests of the HDF5 result file: exact round trip, atomic writing, and clear read errors.
-#include "latfrac/result_file.h"
+#include "latfrac/io/result_file.h"
 
 #include <hdf5.h>
 
@@ -10,7 +10,7 @@
 #include <fstream>
 #include <limits>
 
-#include "latfrac/error.h"
+#include "latfrac/base/error.h"
 #include "sample_result.h"
 
 namespace latfrac {

@@ -5,7 +5,7 @@
 #include <random>
 #include <string>
 
-#include "latfrac/run_result.h"
+#include "latfrac/fracture/run_result.h"
 
 namespace latfrac::testing {
 

@@ -1,7 +1,7 @@
 // Small scenes built in code for the tests (the problem-file reader has its own tests).
 #pragma once
 
-#include "latfrac/scene.h"
+#include "latfrac/scene/model_builder.h"
 
 namespace latfrac::testing {
 

@@ -1,6 +1,6 @@
 // The convergence study: rows against independently computed errors, the files it writes,
 // the broken-set difference on hand-made sets, --increments parsing, the interpretation.
-#include "latfrac/study.h"
+#include "latfrac/study/study.h"
 
 #include <unistd.h>
 
@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "latfrac/error.h"
-#include "latfrac/run.h"
+#include "latfrac/base/error.h"
+#include "latfrac/scene/run.h"
 #include "scenes.h"
 
 namespace fs = std::filesystem;

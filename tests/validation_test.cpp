@@ -8,13 +8,14 @@
 #include <string>
 #include <vector>
 
-#include "latfrac/equilibrium.h"
-#include "latfrac/fault_analysis.h"
-#include "latfrac/fracture.h"
-#include "latfrac/model.h"
-#include "latfrac/node_stress.h"
-#include "latfrac/problem_file.h"
-#include "latfrac/run.h"
+#include "latfrac/solvers/equilibrium.h"
+#include "latfrac/analysis/fault_analysis.h"
+#include "latfrac/criteria/failure_evaluator.h"
+#include "latfrac/mechanics/model.h"
+#include "latfrac/mechanics/node_stress.h"
+#include "latfrac/io/problem_file.h"
+#include "latfrac/scene/run.h"
+#include "latfrac/scene/model_builder.h"
 #include "lithostatic_check.h"
 
 using namespace latfrac;

@@ -1,5 +1,5 @@
 // Tests of the XDMF description: well-formed XML whose every HDF reference resolves in the .h5.
-#include "latfrac/xdmf.h"
+#include "latfrac/io/xdmf.h"
 
 #include <hdf5.h>
 
@@ -13,8 +13,8 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "latfrac/error.h"
-#include "latfrac/result_file.h"
+#include "latfrac/base/error.h"
+#include "latfrac/io/result_file.h"
 #include "sample_result.h"
 
 namespace latfrac {

@@ -1,0 +1,72 @@
+// The lattice: nodes filling a box, the bonds between them, and which faces each node is on.
+//
+// 2-D: a triangular lattice in the x-z plane (rows along x, row pitch sqrt(3)/2 a, every
+// other row shifted by a/2), nearest neighbours only. 3-D: hexagonal close packing,
+// triangular layers in x-y stacked ABAB along z at pitch sqrt(2/3) a, with the 12 nearest
+// neighbours at a and, optionally, the 6 next-nearest at sqrt(2) a.
+//
+// The box is filled from the origin with a whole number of lattice pitches along each
+// axis, the number nearest to the requested size (3-D y: a whole number plus a half, so
+// that both stacking sublattices reach both y faces); the lattice's own extent
+// (`extent`) is what the loads use. A node within a/2 (inclusive) of a face of that
+// extent belongs to the face: so the rows that end half a spacing short of a wall are
+// held by it too. docs/model.md explains both choices.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "latfrac/base/linear_algebra.h"
+
+namespace latfrac {
+
+enum class Face { x_min, x_max, y_min, y_max, z_min, z_max };
+inline constexpr int face_count = 6;
+const char* to_string(Face face);
+
+// What a problem file's [lattice] section asks for.
+struct LatticeSpec {
+  int dim = 2;                          // 2 (plane-strain x-z section) or 3
+  double spacing = 0;                   // a, m
+  std::array<double, 3> size{0, 0, 0};  // box extent along x, y, z in m (y unused in 2-D)
+  bool next_nearest = true;             // 3-D only: next-nearest bonds at sqrt(2) a
+};
+
+enum class BondKind : std::int8_t { nearest = 0, next_nearest = 1 };
+
+struct Bond {
+  std::int64_t i = 0, j = 0;  // i < j
+  BondKind kind = BondKind::nearest;
+};
+
+class Lattice {
+ public:
+  int dim = 2;
+  double spacing = 0;                   // a, m
+  Vec3 extent = Vec3::Zero();           // lattice extent along x, y, z, m (y = 0 in 2-D)
+  double node_volume = 0;               // V0: m^2 per metre (2-D) or m^3 (3-D)
+  double row_pitch = 0;                 // distance between rows (2-D) or layers (3-D), m
+  std::vector<Vec3> positions;          // reference positions X, m
+  std::vector<std::uint8_t> face_mask;  // bit f set: node on Face f
+  std::vector<Bond> bonds;
+  std::vector<Vec3> bond_direction;  // unit vector n0 from i to j
+  std::vector<double> bond_length;   // L0, m
+
+  std::int64_t node_count() const { return static_cast<std::int64_t>(positions.size()); }
+  std::int64_t bond_count() const { return static_cast<std::int64_t>(bonds.size()); }
+  bool on_face(std::int64_t node, Face face) const {
+    return face_mask[node] & (1u << static_cast<int>(face));
+  }
+  // The axes that carry degrees of freedom: {x, z} in 2-D, {x, y, z} in 3-D.
+  std::vector<int> axes() const {
+    return dim == 2 ? std::vector<int>{0, 2} : std::vector<int>{0, 1, 2};
+  }
+};
+
+// Builds the lattice of `spec`. Throws InputError for a non-positive spacing or size, a
+// box smaller than two spacings along an axis, or a dimension other than 2 or 3.
+Lattice build_lattice(const LatticeSpec& spec);
+
+}  // namespace latfrac

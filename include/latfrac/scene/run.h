@@ -1,0 +1,32 @@
+// Running a scene: from a Scene to a RunResult (the continuation in lambda, snapshots,
+// provenance), and the one-screen summary of a result.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "latfrac/fracture/run_result.h"
+#include "latfrac/scene/scene.h"
+
+namespace latfrac {
+
+struct RunOptions {
+  std::string command_line;  // recorded in the provenance
+  bool progress = true;      // the progress line on stderr
+};
+
+// The effects a scene names that this version cannot simulate yet (empty: it can run).
+std::vector<std::string> unsupported_effects(const Scene& scene);
+
+// Runs an elastic scene along lambda from 0 to loading.total and stores a snapshot at each
+// requested lambda (the final state when none are requested). Throws InputError for a
+// scene with unsupported effects, Error when a solve fails.
+RunResult run_scene(const Scene& scene, const RunOptions& options);
+
+// The current time in ISO 8601 (UTC), as provenance records it.
+std::string utc_timestamp();
+
+// The summary printed at the end of a run and by `latfrac analyze`.
+std::string summary_text(const RunResult& result);
+
+}  // namespace latfrac

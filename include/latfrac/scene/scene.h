@@ -1,0 +1,90 @@
+// The scene: everything a problem file says, resolved and validated, in SI units.
+//
+// A Scene gathers the parameters each layer defines (the lattice spec, the material, the
+// supports, the strength, the solver options, the schedule) with those only a whole
+// scene has (gravity, layers, heterogeneity, contact, output).
+//
+// A scene names its effects: an absent optional section means the effect is off
+// (no [gravity], no gravity; no [strength], purely elastic; no [contact], no contact
+// springs). The problem-file reader (problem_file.h) is the only producer of a Scene;
+// docs/problem-files.md documents every key, its unit, default and allowed range.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "latfrac/criteria/strength.h"
+#include "latfrac/fracture/schedule.h"
+#include "latfrac/geometry/lattice.h"
+#include "latfrac/geometry/precut.h"
+#include "latfrac/mechanics/material.h"
+#include "latfrac/mechanics/supports.h"
+#include "latfrac/solvers/solver_options.h"
+
+namespace latfrac {
+
+struct Gravity {
+  double g = 9.81;  // m/s^2
+};
+
+struct Loading {
+  double total = 0;  // final extension strain lambda (negative: compression)
+};
+
+struct Contact {
+  bool enabled = true;
+};
+
+// A horizontal layer z_min <= z < z_max with its own material and strength; a bond
+// belongs to the layer that holds its midpoint. Unset values inherit the scene's.
+struct Layer {
+  double z_min = 0, z_max = 0;  // m
+  Material material;
+  std::optional<double> sigma0, tau0;  // Pa
+};
+
+// Random bond strength: sigma0 and tau0 of each bond are multiplied by a factor drawn
+// uniformly from [1 - spread, 1 + spread] by a generator seeded with `seed`.
+struct Heterogeneity {
+  double spread = 0;
+  std::uint64_t seed = 0;
+};
+
+struct Output {
+  std::vector<double> snapshots;  // lambda values at which to store a snapshot
+  double exaggeration = 1;        // displacement magnification in pictures
+  bool picture = true;            // write a PNG of the final state
+};
+
+struct Scene {
+  std::string name;
+  std::string description;
+  LatticeSpec lattice;
+  Material material;
+  std::array<FaceCondition, face_count> faces{
+      FaceCondition::extension, FaceCondition::extension,  // x_min, x_max
+      FaceCondition::roller,    FaceCondition::roller,     // y_min, y_max
+      FaceCondition::roller,    FaceCondition::free};      // z_min, z_max
+  std::optional<Strength> strength;
+  std::optional<Gravity> gravity;
+  Loading loading;
+  Stepping stepping;
+  std::vector<Precut> precuts;
+  std::optional<Contact> contact;
+  std::vector<Layer> layers;
+  std::optional<Heterogeneity> heterogeneity;
+  bool large_kinematics = false;
+  Output output;
+  SolverOptions solver;
+
+  std::string source_path;  // the problem file, for messages and provenance
+  std::string source_text;  // its full text
+};
+
+// The loading schedule a fracture run follows.
+Schedule schedule_of(const Scene& scene);
+
+}  // namespace latfrac

@@ -1,0 +1,136 @@
+// Static equilibrium R(u, lambda) = 0 by KINSOL's Newton iteration on a CHOLMOD factor.
+//
+// The unknowns are the free displacements; R is the out-of-balance force (internal minus
+// external) on them, and its Jacobian is the tangent stiffness K. KINSOL drives the
+// iteration; its linear solver is our own SUNLinearSolver whose setup factorizes K with
+// CHOLMOD (symbolic analysis reused) and whose solve back-substitutes. The stopping test
+// is max |R| <= tolerance * max |R(0, lambda)|: the residual relative to the load.
+//
+// With a linear bond law and a fixed set of intact bonds the path is affine,
+// u(lambda) = u_g + lambda u_e; affine_path() factorizes once and solves the gravity and
+// the unit-extension right-hand sides together.
+#pragma once
+
+#include <memory>
+
+#include "latfrac/solvers/cholesky.h"
+#include "latfrac/mechanics/model.h"
+#include "latfrac/solvers/solver_options.h"
+#include "latfrac/mechanics/stiffness.h"
+
+namespace latfrac {
+
+struct EquilibriumReport {
+  long newton_iterations = 0;
+  long residual_evaluations = 0;
+  double relative_residual = 0;  // max |R| / max |R(0, lambda)|
+};
+
+// Free displacements along an affine path: u(lambda) = gravity + lambda * extension.
+struct AffinePath {
+  Vector gravity;
+  Vector extension;
+  Vector at(double lambda) const { return gravity + lambda * extension; }
+};
+
+struct SolverCounters {
+  long solves = 0;          // back-substitutions with the factor (each may hold several RHS)
+  long factorizations = 0;  // numeric factorizations
+  long factor_updates = 0;  // rank updates of the factor
+  long correction_solves = 0;  // of the solves: few-entry corrections (checked_solve)
+};
+
+class EquilibriumSolver {
+ public:
+  EquilibriumSolver(Model& model, const SolverOptions& options);
+  ~EquilibriumSolver();
+  EquilibriumSolver(const EquilibriumSolver&) = delete;
+  EquilibriumSolver& operator=(const EquilibriumSolver&) = delete;
+
+  // Newton from the given free displacement (updated in place) at extension strain lambda.
+  // Throws Error naming the KINSOL or CHOLMOD call when it fails.
+  EquilibriumReport solve(double lambda, Vector& free_displacement);
+
+  // Requires a linear bond law. One factorization, one two-column solve.
+  AffinePath affine_path();
+
+  // Call after changing the model's stiffness by other means: the factor is stale.
+  void stiffness_changed() {
+    factor_current_ = false;
+    loads_current_ = false;
+    last_solution_valid_ = false;
+  }
+
+  // Removes bond b's spring stiffness from the factor (rank 2 in 2-D, 3 in 3-D); call
+  // after marking it broken. A fresh factorization replaces the update after
+  // refactor_every updates.
+  void remove_bond(std::int64_t bond);
+  // Adds or removes bond b's contact spring kn n0 n0' (rank 1); call after changing
+  // model.contact_active[bond].
+  void set_contact(std::int64_t bond, bool active);
+
+  // The affine path of the current stiffness, its residual checked at lambda: when the
+  // updated factor's answer misses the tolerance, refactorizes and solves again.
+  AffinePath checked_affine_path(double lambda);
+  // The free displacement at lambda alone (one right-hand side), checked the same way:
+  // what a cascade at fixed lambda needs after each break.
+  Vector checked_solve(double lambda);
+
+  // Call after the model's supports changed (a fragment held fixed): rebuilds the
+  // stiffness pattern, the analysis and KINSOL's memory.
+  void supports_changed();
+
+  // max |R(0, lambda)|: the size of the load at lambda, N.
+  double load_scale(double lambda);
+
+  const SolverCounters& counters() const { return counters_; }
+  StiffnessMatrix& stiffness() { return stiffness_; }
+  CholeskyFactor& factor() { return factor_; }
+
+ private:
+  struct Kinsol;  // equilibrium_newton.cpp
+  friend struct Kinsol;
+  void reset_kinsol();
+  void refactorize(const Vector& free_displacement, double lambda);
+  // The loads on the free dofs at zero free displacement: load0 (gravity and the fixed
+  // part of the supports) and load1 (per unit lambda), so that R(0, lambda) = -(load0 +
+  // lambda load1). Only bonds that touch a prescribed dof contribute: the others are
+  // unstretched when every free dof is zero.
+  void update_loads();
+  void find_boundary_bonds();
+  std::vector<std::int64_t> boundary_bonds_;
+  Vector load0_, load1_;
+  bool loads_current_ = false;
+  // The relative residual of a free displacement at lambda, max |R| / max |R(0, lambda)|.
+  double relative_residual(const Vector& free_displacement, double lambda);
+  // Rank update of the factor with the columns sqrt(w) (e_j - e_i) (x) v on the free dofs.
+  void update_factor(std::int64_t bond,
+                     const std::vector<std::pair<double, Vec3>>& weighted_directions,
+                     bool downdate);
+  long updates_since_factorization_ = 0;
+  // The last checked solution and its lambda, and the forces that the factor updates since
+  // then took out of it or added to it, on the free dofs. At the same lambda the new
+  // solution is that one plus K^-1 (those forces): a right-hand side with a few entries per
+  // update, which the updated factor solves at about half the cost of a full one
+  // (CholeskyFactor::solve_sparse). The residual check still guards the result.
+  void remember_solution(const Vector& free_displacement, double lambda);
+  // Appends v on node j's free dofs and -v on node i's (the pattern of bond (i, j)).
+  void append_on_bond(std::int64_t bond, const Vec3& v, CholeskyFactor::Column& column) const;
+  void record_force_change(std::int64_t bond,
+                           const std::vector<std::pair<double, Vec3>>& weighted_directions,
+                           bool downdate);
+  Vector last_solution_;
+  double last_lambda_ = 0;
+  bool last_solution_valid_ = false;
+  CholeskyFactor::Column pending_forces_;
+
+  Model& model_;
+  SolverOptions options_;
+  StiffnessMatrix stiffness_;
+  CholeskyFactor factor_;
+  bool factor_current_ = false;
+  SolverCounters counters_;
+  std::unique_ptr<Kinsol> kinsol_;
+};
+
+}  // namespace latfrac

@@ -1,0 +1,111 @@
+// Fault reports as a readable table and as JSON.
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "latfrac/analysis/fault_analysis.h"
+
+namespace latfrac {
+
+namespace {
+
+std::string format(const char* pattern, auto... values) {
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer, pattern, values...);
+  return buffer;
+}
+
+// Shortest round-trip form; JSON has no NaN or infinity, so those become null.
+std::string json_number(double value) {
+  if (!std::isfinite(value)) return "null";
+  if (value == 0) value = 0;  // no "-0"
+  char buffer[32];
+  const auto written = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, written.ptr);
+}
+
+std::string dip_direction_text(int direction) {
+  return direction > 0 ? "+x" : direction < 0 ? "-x" : "-";
+}
+
+}  // namespace
+
+std::string to_text(const FaultReport& report) {
+  const bool three_d = report.dim == 3;
+  std::string text = format("Faults at lambda = %g: %lld broken bonds (pre-cuts excluded); ",
+                            report.lambda, static_cast<long long>(report.broken_bonds));
+  text += format("clusters: %zu, grabens: %zu\n", report.faults.size(), report.grabens.size());
+  if (report.faults.empty()) return text;
+
+  text +=
+      "dip: from horizontal; alpha = 90 - dip: to the vertical (sigma1); "
+      "dips to: the side the fault descends towards\n";
+  text += format("%4s %8s %8s %6s %6s %6s %7s %11s %9s %11s", "#", "bonds", "tensile", "shear",
+                 "dip", "alpha", "dips to", three_d ? "area m^2" : "length m", "rms m", "x m");
+  if (three_d) text += format(" %11s", "y m");
+  text += format(" %11s\n", "z m");
+  for (std::size_t f = 0; f < report.faults.size(); ++f) {
+    const Fault& fault = report.faults[f];
+    text += format("%4zu %8lld %8.2f %6.2f %6.1f %6.1f %7s %11.4g %9.3g %11.5g", f + 1,
+                   static_cast<long long>(fault.bonds), fault.tensile_share, fault.shear_share,
+                   fault.dip_deg, fault.alpha_deg, dip_direction_text(fault.dip_direction).c_str(),
+                   fault.extent, fault.fit_rms, fault.centroid[0]);
+    if (three_d) text += format(" %11.5g", fault.centroid[1]);
+    text += format(" %11.5g", fault.centroid[2]);
+    if (fault.diffuse)
+      text += format("  diffuse (variance ratio %.2f, rms %.3g m, fill share %.2f): not a fault",
+                     fault.variance_ratio, fault.fit_rms, fault.fill_share);
+    text += "\n";
+  }
+  if (report.grabens.empty()) return text;
+
+  text += "\nGrabens (subsidence: surface outside minus between the faults; positive: down)\n";
+  text += format("%6s %6s %13s %13s %13s %15s\n", "left", "right", "left x m", "right x m",
+                 "apex depth m", "subsidence m");
+  for (const Graben& graben : report.grabens) {
+    text += format("%6zu %6zu %13.5g %13.5g %13.5g %15.5g\n", graben.left_fault + 1,
+                   graben.right_fault + 1, graben.left_surface_x, graben.right_surface_x,
+                   graben.apex_depth, graben.surface_subsidence);
+  }
+  return text;
+}
+
+std::string to_json(const FaultReport& report) {
+  std::string json =
+      "{\"dim\": " + std::to_string(report.dim) + ", \"lambda\": " + json_number(report.lambda) +
+      ", \"broken_bonds\": " + std::to_string(report.broken_bonds) + ", \"faults\": [";
+  for (std::size_t f = 0; f < report.faults.size(); ++f) {
+    const Fault& fault = report.faults[f];
+    if (f > 0) json += ", ";
+    json += "{\"bonds\": " + std::to_string(fault.bonds) +
+            ", \"tensile_share\": " + json_number(fault.tensile_share) +
+            ", \"shear_share\": " + json_number(fault.shear_share) + ", \"centroid\": [" +
+            json_number(fault.centroid[0]) + ", " + json_number(fault.centroid[1]) + ", " +
+            json_number(fault.centroid[2]) + "], \"normal\": [" + json_number(fault.normal[0]) +
+            ", " + json_number(fault.normal[1]) + ", " + json_number(fault.normal[2]) +
+            "], \"dip_deg\": " + json_number(fault.dip_deg) +
+            ", \"alpha_deg\": " + json_number(fault.alpha_deg) +
+            ", \"dip_direction\": " + std::to_string(fault.dip_direction) +
+            ", \"extent\": " + json_number(fault.extent) +
+            ", \"fit_rms\": " + json_number(fault.fit_rms) +
+            ", \"variance_ratio\": " + json_number(fault.variance_ratio) +
+            ", \"fill_share\": " + json_number(fault.fill_share) +
+            ", \"diffuse\": " + (fault.diffuse ? "true" : "false") + "}";
+  }
+  json += "], \"grabens\": [";
+  for (std::size_t g = 0; g < report.grabens.size(); ++g) {
+    const Graben& graben = report.grabens[g];
+    if (g > 0) json += ", ";
+    json += "{\"left_fault\": " + std::to_string(graben.left_fault) +
+            ", \"right_fault\": " + std::to_string(graben.right_fault) +
+            ", \"left_surface_x\": " + json_number(graben.left_surface_x) +
+            ", \"right_surface_x\": " + json_number(graben.right_surface_x) +
+            ", \"apex_depth\": " + json_number(graben.apex_depth) +
+            ", \"surface_subsidence\": " + json_number(graben.surface_subsidence) + "}";
+  }
+  json += "]}";
+  return json;
+}
+
+}  // namespace latfrac

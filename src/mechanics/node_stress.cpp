@@ -1,0 +1,36 @@
+// Virial node stresses.
+#include "latfrac/mechanics/node_stress.h"
+
+namespace latfrac {
+
+std::vector<double> node_stresses(const Model& model, const Vector& displacement) {
+  const Lattice& lattice = model.lattice;
+  std::vector<Mat3> stress(lattice.node_count(), Mat3::Zero());
+  for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
+    if (!model.intact[b]) continue;
+    const Bond& bond = lattice.bonds[b];
+    const Vec3 d0 = lattice.bond_direction[b] * lattice.bond_length[b];
+    const Vec3 du = model.node_displacement(displacement, bond.j) -
+                    model.node_displacement(displacement, bond.i);
+    const Vec3 t = model.law->tension({lattice.bond_direction[b], lattice.bond_length[b]}, du,
+                                      model.normal_stiffness[b], model.shear_stiffness[b]);
+    const Mat3 dyad = d0 * t.transpose();
+    stress[bond.i] += dyad;
+    stress[bond.j] += dyad;
+  }
+  std::vector<double> voigt(lattice.node_count() * 6);
+  const double scale = 1.0 / (2 * lattice.node_volume);
+  for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
+    const Mat3 s = 0.5 * scale * (stress[n] + stress[n].transpose());
+    double* v = &voigt[n * 6];
+    v[0] = s(0, 0);
+    v[2] = s(2, 2);
+    v[1] = lattice.dim == 2 ? model.node_poisson[n] * (s(0, 0) + s(2, 2)) : s(1, 1);
+    v[3] = s(1, 2);
+    v[4] = s(0, 2);
+    v[5] = s(0, 1);
+  }
+  return voigt;
+}
+
+}  // namespace latfrac

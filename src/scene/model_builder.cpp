@@ -1,0 +1,117 @@
+// Builds the mechanical model of a scene: lattice, springs, strengths, supports, gravity.
+#include "latfrac/scene/model_builder.h"
+
+#include <optional>
+#include <random>
+
+#include "latfrac/base/error.h"
+#include "latfrac/criteria/criterion.h"
+#include "latfrac/geometry/precut.h"
+#include "latfrac/mechanics/calibration.h"
+
+namespace latfrac {
+namespace {
+
+// The layer holding height z. The lattice's top row can lie above the requested height
+// (the box is filled with whole row pitches), so a layer that reaches the requested top
+// also holds everything above it.
+const Layer* layer_at(const Scene& scene, double z) {
+  const double top = scene.lattice.size[2];
+  for (const Layer& layer : scene.layers) {
+    const bool reaches_top = layer.z_max >= top * (1 - 1e-12);
+    if (z >= layer.z_min && (z < layer.z_max || reaches_top)) return &layer;
+  }
+  return nullptr;
+}
+
+const Material& material_at(const Scene& scene, double z) {
+  const Layer* layer = layer_at(scene, z);
+  return layer ? layer->material : scene.material;
+}
+
+// Moduli and strengths per bond: the layer holding the bond's midpoint, times a random
+// factor uniform in [1 - spread, 1 + spread] when the scene names heterogeneity.
+void assign_strengths(const Scene& scene, Model& model) {
+  const Lattice& lattice = model.lattice;
+  const std::int64_t bonds = lattice.bond_count();
+  model.bond_young.resize(bonds);
+  model.bond_shear_modulus.resize(bonds);
+  model.bond_sigma0.assign(bonds, 0.0);
+  model.bond_tau0.assign(bonds, 0.0);
+  std::optional<CriterionParameters> criterion;
+  if (scene.strength) criterion = resolve_criterion(*scene.strength, lattice.dim);
+  std::mt19937_64 generator(scene.heterogeneity ? scene.heterogeneity->seed : 0);
+  const double spread = scene.heterogeneity ? scene.heterogeneity->spread : 0.0;
+  std::uniform_real_distribution<double> factor(1 - spread, 1 + spread);
+  for (std::int64_t b = 0; b < bonds; ++b) {
+    const Bond& bond = lattice.bonds[b];
+    const double mid_z = 0.5 * (lattice.positions[bond.i].z() + lattice.positions[bond.j].z());
+    const Layer* layer = layer_at(scene, mid_z);
+    const Material& material = layer ? layer->material : scene.material;
+    model.bond_young[b] = material.young;
+    model.bond_shear_modulus[b] = material.young / (2 * (1 + material.poisson));
+    if (!criterion) continue;
+    const double scale = spread > 0 ? factor(generator) : 1.0;
+    const double sigma0 = layer && layer->sigma0 ? *layer->sigma0 : criterion->sigma0;
+    double tau0 = layer && layer->tau0 ? *layer->tau0 : criterion->tau0;
+    // A layer that sets its own sigma0 but not tau0 scales a derived tau0 with it.
+    if (layer && layer->sigma0 && !layer->tau0 && !scene.strength->tau0)
+      tau0 *= sigma0 / criterion->sigma0;
+    model.bond_sigma0[b] = scale * sigma0;
+    model.bond_tau0[b] = scale * tau0;
+  }
+}
+
+}  // namespace
+
+Model build_model(const Scene& scene) {
+  validate_material(scene.material);
+  for (const Layer& layer : scene.layers) validate_material(layer.material, "layer");
+  Model model;
+  model.lattice = build_lattice(scene.lattice);
+  const Lattice& lattice = model.lattice;
+  const int dim = lattice.dim;
+
+  const std::int64_t bonds = lattice.bond_count();
+  model.normal_stiffness.resize(bonds);
+  model.shear_stiffness.resize(bonds);
+  model.intact.assign(bonds, 1);
+  for (std::int64_t b = 0; b < bonds; ++b) {
+    const Bond& bond = lattice.bonds[b];
+    const double mid_z = 0.5 * (lattice.positions[bond.i].z() + lattice.positions[bond.j].z());
+    const SpringConstants k = spring_constants(dim, material_at(scene, mid_z), lattice.spacing);
+    const double scale = bond.kind == BondKind::next_nearest ? next_nearest_fraction : 1.0;
+    model.normal_stiffness[b] = scale * k.normal;
+    model.shear_stiffness[b] = scale * k.shear;
+  }
+
+  assign_strengths(scene, model);
+  model.precut.assign(bonds, 0);
+  for (std::int64_t b : bonds_crossing_precuts(lattice, scene.precuts)) {
+    model.precut[b] = 1;
+    model.intact[b] = 0;
+  }
+  model.contact = scene.contact.has_value();
+  model.contact_active.assign(bonds, 0);
+
+  model.dofs = build_dof_map(lattice, scene.faces);
+  model.external_force = Vector::Zero(model.dofs.dof_count());
+  model.node_poisson.resize(lattice.node_count());
+  for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
+    const Material& material = material_at(scene, lattice.positions[n].z());
+    model.node_poisson[n] = material.poisson;
+    if (scene.gravity) {
+      const int z_component = dim - 1;
+      model.external_force[n * dim + z_component] =
+          -material.density * scene.gravity->g * lattice.node_volume;
+    }
+  }
+  if (scene.large_kinematics) {
+    model.law = std::make_unique<LargeKinematics>();
+  } else {
+    model.law = std::make_unique<SmallKinematics>();
+  }
+  return model;
+}
+
+}  // namespace latfrac

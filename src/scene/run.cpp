@@ -1,0 +1,160 @@
+// The run: build the model, follow the equilibrium path in lambda, record snapshots.
+#include "latfrac/scene/run.h"
+
+#include <latfrac_version.h>
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <sstream>
+
+#include "latfrac/fracture/continuation.h"
+#include "latfrac/scene/model_builder.h"
+#include "latfrac/solvers/equilibrium.h"
+#include "latfrac/base/error.h"
+#include "latfrac/fracture/initial_supports.h"
+#include "latfrac/base/progress.h"
+#include "latfrac/fracture/snapshot.h"
+
+namespace latfrac {
+
+std::string utc_timestamp() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
+}
+
+namespace {
+
+Provenance provenance_of(const Scene& scene, const RunOptions& options) {
+  Provenance p;
+  p.version = LATFRAC_VERSION;
+  p.git_commit = LATFRAC_GIT_COMMIT;
+  p.command_line = options.command_line;
+  p.problem = scene.source_text;
+  p.created = utc_timestamp();
+  p.seed = scene.heterogeneity ? scene.heterogeneity->seed : 0;
+  return p;
+}
+
+}  // namespace
+
+std::vector<std::string> unsupported_effects(const Scene& scene) {
+  std::vector<std::string> missing;
+  if (scene.contact && !scene.strength) {
+    missing.push_back(
+        "[contact] on an elastic scene (contacts are settled by the fracture run: add a "
+        "[strength] section, with a strength that cannot be reached if nothing should break)");
+  }
+  if (scene.solver.method == EquilibriumMethod::relaxation && !scene.strength) {
+    missing.push_back(
+        "solver.method = \"relaxation\" on an elastic scene (it is the fracture baseline)");
+  }
+  return missing;
+}
+
+RunResult run_scene(const Scene& scene, const RunOptions& options) {
+  if (const auto missing = unsupported_effects(scene); !missing.empty()) {
+    std::string list;
+    for (const std::string& effect : missing) list += (list.empty() ? "" : ", ") + effect;
+    throw InputError(scene.source_path + ": this version of latfrac cannot yet simulate " + list);
+  }
+  if (scene.strength && scene.solver.method == EquilibriumMethod::relaxation &&
+      scene.stepping.method == SteppingMethod::event) {
+    throw InputError(
+        scene.source_path +
+        ": solver.method = \"relaxation\" works with the fixed-step "
+        "method only (stepping.method = \"fixed\"): events need the exact affine path");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  RunResult result;
+  result.provenance = provenance_of(scene, options);
+  result.scene = {scene.name, scene.lattice.dim, scene.lattice.spacing, "",
+                  scene.output.exaggeration};
+
+  Model model = build_model(scene);
+  record_lattice(model, result);
+  result.fragments = prepare_supports(model, scene.source_path);
+  EquilibriumSolver solver(model, scene.solver);
+  ProgressLine progress(options.progress);
+
+  std::int64_t relaxation_solves = 0;
+  if (scene.strength) {
+    result.scene.criterion = to_string(scene.strength->criterion);
+    FractureContinuation continuation(model, *scene.strength, schedule_of(scene), scene.solver,
+                                      solver, progress);
+    if (scene.stepping.method == SteppingMethod::event) {
+      continuation.run_event_driven(result);
+    } else {
+      continuation.run_fixed_step(result);
+    }
+    result.summary.breaks = continuation.breaks();
+    result.summary.contact_cycles = continuation.chattering_resolved();
+    result.summary.relaxation_sweeps = continuation.relaxation_sweeps();
+    relaxation_solves = continuation.relaxation_solves();
+    result.summary.relaxation_unconverged = continuation.relaxation_unconverged();
+  } else {
+    // A linear elastic scene follows an affine path: one factorization and one
+    // two-column solve give every lambda; KINSOL then confirms equilibrium at each snapshot.
+    // A nonlinear one (large kinematics) is solved by KINSOL snapshot after snapshot, each
+    // from the one before.
+    const bool linear = model.law->is_linear();
+    const AffinePath path = linear ? solver.affine_path() : AffinePath{};
+    std::vector<double> lambdas = scene.output.snapshots;
+    if (lambdas.empty()) lambdas.push_back(scene.loading.total);
+    Vector free_displacement = Vector::Zero(model.dofs.free_count);
+    for (double lambda : lambdas) {
+      if (linear) free_displacement = path.at(lambda);
+      solver.solve(lambda, free_displacement);
+      result.snapshots.push_back(make_snapshot(
+          model, model.full_displacement(free_displacement, lambda), lambda, nullptr));
+      progress.update(lambda, 0);
+    }
+  }
+  progress.finish();
+
+  result.summary.final_lambda = scene.loading.total;
+  result.summary.solves = solver.counters().solves + relaxation_solves;
+  result.summary.factorizations = solver.counters().factorizations;
+  result.summary.factor_updates = solver.counters().factor_updates;
+  result.summary.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+std::string summary_text(const RunResult& result) {
+  std::ostringstream text;
+  const RunSummary& s = result.summary;
+  text << "summary of " << result.scene.name << " (" << result.scene.dim << "-D, spacing "
+       << result.scene.spacing << " m, "
+       << (result.scene.criterion.empty() ? "elastic" : result.scene.criterion) << ")\n"
+       << "  nodes " << result.node_count() << ", bonds " << result.bond_count() << "\n"
+       << "  final lambda " << s.final_lambda << ", bonds broken " << s.breaks << ", events "
+       << result.events.size() << "\n"
+       << "  parts held for lack of support " << result.fragments.size()
+       << ", contact cycles resolved " << s.contact_cycles << "\n"
+       << (s.relaxation_sweeps ? "  relaxation sweeps " + std::to_string(s.relaxation_sweeps) +
+                                     ", solves stopped by the sweep cap " +
+                                     std::to_string(s.relaxation_unconverged) + "\n"
+                               : std::string())
+       << "  solves " << s.solves << ", factorizations " << s.factorizations << ", factor updates "
+       << s.factor_updates << "\n"
+       << "  wall time " << s.wall_seconds << " s\n";
+  for (const Snapshot& snapshot : result.snapshots) {
+    double max_u = 0, min_zz = 0, max_zz = 0;
+    for (std::size_t n = 0; n < result.node_count(); ++n) {
+      const double* u = &snapshot.displacement[3 * n];
+      max_u = std::max(max_u, std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]));
+      min_zz = std::min(min_zz, snapshot.node_stress[6 * n + 2]);
+      max_zz = std::max(max_zz, snapshot.node_stress[6 * n + 2]);
+    }
+    text << "  snapshot lambda " << snapshot.lambda << ": max |u| " << max_u << " m, sigma_zz from "
+         << min_zz / 1e6 << " to " << max_zz / 1e6 << " MPa\n";
+  }
+  text << "  made by latfrac " << result.provenance.version << " (" << result.provenance.git_commit
+       << ") on " << result.provenance.created << "\n";
+  return text.str();
+}
+
+}  // namespace latfrac

@@ -1,0 +1,79 @@
+// Size and memory estimates of a scene, from its lattice geometry and fitted factor growth.
+#include "latfrac/scene/size_estimate.h"
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "latfrac/geometry/lattice.h"
+
+namespace latfrac {
+
+SizeEstimate estimate_size(const Scene& scene) {
+  const LatticeSpec& spec = scene.lattice;
+  // Counted in floating point from the geometry, so that an absurd scene cannot overflow
+  // an integer.
+  const double a = spec.spacing;
+  const double rows =
+      spec.size[2] / (spec.dim == 2 ? std::sqrt(3.0) / 2 * a : std::sqrt(2.0 / 3.0) * a) + 1;
+  const double per_row = spec.size[0] / a + 1;
+  const double columns = spec.dim == 2 ? 1.0 : spec.size[1] / (std::sqrt(3.0) / 2 * a) + 1;
+  SizeEstimate estimate;
+  estimate.nodes = rows * per_row * columns;
+  estimate.bonds = (spec.dim == 2 ? 3.0 : spec.next_nearest ? 9.0 : 6.0) * estimate.nodes;
+  estimate.unknowns = estimate.nodes * spec.dim;
+  const double n = estimate.unknowns;
+  estimate.factor_nonzeros =
+      spec.dim == 2 ? 7.1 * n * std::log(std::max(n, 2.0)) : 15.6 * std::pow(n, 4.0 / 3.0);
+  estimate.memory_bytes = 24.0 * estimate.factor_nonzeros + 1024.0 * estimate.nodes;
+  return estimate;
+}
+
+std::string readable_bytes(double bytes) {
+  const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB"};
+  int unit = 0;
+  while (bytes >= 1024 && unit < 5) {
+    bytes /= 1024;
+    ++unit;
+  }
+  std::ostringstream text;
+  text << std::setprecision(bytes < 1e4 ? 3 : 2) << bytes << " " << units[unit];
+  return text.str();
+}
+
+std::string memory_refusal(const Scene& scene, const SizeEstimate& estimate,
+                           double available_bytes) {
+  if (available_bytes <= 0 || estimate.memory_bytes <= available_bytes) return "";
+  std::ostringstream text;
+  text << scene.source_path << ": lattice.spacing: " << scene.lattice.spacing << " m makes about "
+       << std::setprecision(3) << estimate.nodes << " nodes needing about "
+       << readable_bytes(estimate.memory_bytes) << ", but only " << readable_bytes(available_bytes)
+       << " are available; use a larger spacing or a smaller lattice.size (or --force to try "
+          "anyway)";
+  return text.str();
+}
+
+double available_memory_bytes() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  double kilobytes = 0;
+  std::string unit;
+  while (meminfo >> key >> kilobytes >> unit) {
+    if (key == "MemAvailable:") return kilobytes * 1024.0;
+  }
+  return 0;
+}
+
+std::string describe(const SizeEstimate& e) {
+  std::ostringstream text;
+  text << "size estimate\n"
+       << "  nodes            " << e.nodes << "\n"
+       << "  bonds            " << e.bonds << "\n"
+       << "  unknowns         " << e.unknowns << " (before supports)\n"
+       << "  factor entries   " << e.factor_nonzeros << "\n"
+       << "  peak memory      " << readable_bytes(e.memory_bytes) << " (estimate)\n";
+  return text.str();
+}
+
+}  // namespace latfrac

@@ -1,0 +1,373 @@
+// CHOLMOD-backed sparse Cholesky: analyze once, factorize, solve many right-hand sides.
+#include "latfrac/solvers/cholesky.h"
+
+#include <dlfcn.h>
+#include <suitesparse/cholmod.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <mutex>
+#include <sstream>
+
+#include "latfrac/base/error.h"
+
+namespace latfrac {
+
+struct CholeskyFactor::State {
+  cholmod_common common;
+  cholmod_factor* symbolic = nullptr;  // the analysis, kept for fresh supernodal factorizations
+  cholmod_factor* factor = nullptr;    // the numeric factor (simplicial LDL' after updates)
+  cholmod_dense* solution = nullptr;
+  cholmod_dense* work_y = nullptr;
+  cholmod_dense* work_e = nullptr;
+};
+
+namespace {
+
+std::string status_text(int status) {
+  switch (status) {
+    case CHOLMOD_OK:
+      return "ok";
+    case CHOLMOD_NOT_INSTALLED:
+      return "method not installed";
+    case CHOLMOD_OUT_OF_MEMORY:
+      return "out of memory";
+    case CHOLMOD_TOO_LARGE:
+      return "integer overflow (problem too large)";
+    case CHOLMOD_INVALID:
+      return "invalid input";
+    case CHOLMOD_GPU_PROBLEM:
+      return "GPU problem";
+    case CHOLMOD_NOT_POSDEF:
+      return "matrix not positive definite";
+    case CHOLMOD_DSMALL:
+      return "tiny diagonal entry";
+  }
+  return "status " + std::to_string(status);
+}
+
+void check(const cholmod_common& common, bool ok, const char* call) {
+  if (ok && common.status == CHOLMOD_OK) return;
+  throw Error(std::string(call) + " failed: " + status_text(common.status));
+}
+
+// Threads compete on a small machine. OpenBLAS's threads compete with CHOLMOD's
+// supernodal kernels: on 2 cores a 3-D factorization takes twice as long with two BLAS
+// threads as with one. CHOLMOD's own OpenMP loops (built for 4 threads) cost more than
+// they give: on 2 cores a 2-D factorization of 100k nodes took 1.43 s with them and
+// 0.98 s without (bench/bench_equilibrium). So both run one thread by default; a user
+// who sets OPENBLAS_NUM_THREADS, or OMP_NUM_THREADS or OMP_THREAD_LIMIT, keeps that
+// library's setting. Looked up at run time so any BLAS and OpenMP runtime link. OpenMP's
+// max-active-levels of 0 runs every parallel region on one thread, even one that asks
+// for a number of threads explicitly, as CHOLMOD's do.
+void limit_threads() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    if (!std::getenv("OPENBLAS_NUM_THREADS")) {
+      using SetThreads = void (*)(int);
+      if (auto set =
+              reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
+        set(1);
+    }
+    if (!std::getenv("OMP_NUM_THREADS") && !std::getenv("OMP_THREAD_LIMIT")) {
+      using SetLevels = void (*)(int);
+      if (auto set =
+              reinterpret_cast<SetLevels>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels")))
+        set(0);
+    }
+  });
+}
+
+// A CHOLMOD view of the matrix's arrays (no copy; CHOLMOD never frees it).
+cholmod_sparse view_of(StiffnessMatrix& matrix) {
+  cholmod_sparse a{};
+  a.nrow = a.ncol = static_cast<std::size_t>(matrix.size());
+  a.nzmax = static_cast<std::size_t>(matrix.nonzeros());
+  a.p = matrix.column_start().data();
+  a.i = matrix.row_index().data();
+  a.x = matrix.values().data();
+  a.stype = 1;
+  a.itype = CHOLMOD_LONG;
+  a.xtype = CHOLMOD_REAL;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = 1;
+  a.packed = 1;
+  return a;
+}
+
+}  // namespace
+
+CholeskyFactor::CholeskyFactor(Ordering ordering) : state_(std::make_unique<State>()) {
+  limit_threads();
+  cholmod_common& c = state_->common;
+  if (!cholmod_l_start(&c)) throw Error("cholmod_l_start failed");
+  c.print = 0;
+  c.error_handler = nullptr;
+  c.nmethods = 1;
+  c.supernodal = CHOLMOD_SUPERNODAL;
+  switch (ordering) {
+    case Ordering::metis:
+      c.method[0].ordering = CHOLMOD_METIS;
+      break;
+    case Ordering::nesdis:
+      c.method[0].ordering = CHOLMOD_NESDIS;
+      break;
+    case Ordering::amd:
+      c.method[0].ordering = CHOLMOD_AMD;
+      break;
+  }
+  c.postorder = 1;
+}
+
+CholeskyFactor::~CholeskyFactor() {
+  cholmod_common& c = state_->common;
+  cholmod_l_free_factor(&state_->factor, &c);
+  cholmod_l_free_factor(&state_->symbolic, &c);
+  cholmod_l_free_dense(&state_->solution, &c);
+  cholmod_l_free_dense(&state_->work_y, &c);
+  cholmod_l_free_dense(&state_->work_e, &c);
+  cholmod_l_finish(&c);
+}
+
+bool CholeskyFactor::analyzed() const { return state_->symbolic != nullptr; }
+
+void CholeskyFactor::analyze(StiffnessMatrix& matrix) {
+  cholmod_common& c = state_->common;
+  cholmod_l_free_factor(&state_->factor, &c);
+  cholmod_l_free_factor(&state_->symbolic, &c);
+  inverse_permutation_.clear();
+  factorized_ = false;
+  cholmod_sparse a = view_of(matrix);
+  state_->symbolic = cholmod_l_analyze(&a, &c);
+  check(c, state_->symbolic != nullptr, "cholmod_l_analyze");
+}
+
+void CholeskyFactor::factorize(StiffnessMatrix& matrix) {
+  if (!analyzed()) analyze(matrix);
+  cholmod_common& c = state_->common;
+  cholmod_sparse a = view_of(matrix);
+  factorized_ = false;
+  // A factor turned simplicial by updates starts again from the supernodal analysis.
+  if (!state_->factor || !state_->factor->is_super) {
+    cholmod_l_free_factor(&state_->factor, &c);
+    state_->factor = cholmod_l_copy_factor(state_->symbolic, &c);
+    check(c, state_->factor != nullptr, "cholmod_l_copy_factor");
+  }
+  const int ok = cholmod_l_factorize(&a, state_->factor, &c);
+  if (c.status == CHOLMOD_NOT_POSDEF) {
+    const auto* perm = static_cast<const std::int64_t*>(state_->factor->Perm);
+    const std::int64_t column = perm[state_->factor->minor];
+    std::ostringstream message;
+    message << "cholmod_l_factorize: the stiffness matrix is not positive definite (failed at "
+               "column "
+            << state_->factor->minor << " of " << matrix.size()
+            << "): part of the body can move without resistance (a rigid-body motion the face "
+               "conditions do not prevent, or a piece cut loose)";
+    throw SingularStiffness(message.str(), column);
+  }
+  check(c, ok, "cholmod_l_factorize");
+  // A rigid-body mode can survive roundoff as a tiny positive pivot: catch it here.
+  const double rcond = cholmod_l_rcond(state_->factor, &c);
+  if (!(rcond > 1e-14)) {
+    std::ostringstream message;
+    message << "cholmod_l_factorize: the stiffness matrix is singular to working precision "
+               "(reciprocal condition estimate "
+            << rcond << "): part of the body can move without resistance";
+    throw SingularStiffness(message.str(), smallest_pivot_column());
+  }
+  factorized_ = true;
+}
+
+void CholeskyFactor::solve(double* rhs, std::int64_t rows, int columns) {
+  if (!factorized_) throw Error("CholeskyFactor::solve called before a successful factorization");
+  cholmod_common& c = state_->common;
+  cholmod_dense b{};
+  b.nrow = static_cast<std::size_t>(rows);
+  b.ncol = static_cast<std::size_t>(columns);
+  b.nzmax = b.nrow * b.ncol;
+  b.d = b.nrow;
+  b.x = rhs;
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  const int ok = cholmod_l_solve2(CHOLMOD_A, state_->factor, &b, nullptr, &state_->solution,
+                                  nullptr, &state_->work_y, &state_->work_e, &c);
+  check(c, ok, "cholmod_l_solve2");
+  const double* x = static_cast<const double*>(state_->solution->x);
+  std::copy(x, x + b.nzmax, rhs);
+}
+
+void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
+  if (!factorized_) throw Error("CholeskyFactor::update called before a successful factorization");
+  if (columns.empty()) return;
+  cholmod_common& c = state_->common;
+  cholmod_factor* factor = state_->factor;
+  if (factor->is_super || factor->is_ll) {
+    const int ok = cholmod_l_change_factor(CHOLMOD_REAL, /*to_ll=*/0, /*to_super=*/0,
+                                           /*to_packed=*/1, /*to_monotonic=*/1, factor, &c);
+    check(c, ok, "cholmod_l_change_factor");
+  }
+  // C must be permuted like the factor: row r of K is row inverse_perm[r] of C.
+  const auto* perm = static_cast<const std::int64_t*>(factor->Perm);
+  const std::int64_t n = static_cast<std::int64_t>(factor->n);
+  if (static_cast<std::int64_t>(inverse_permutation_.size()) != n) {
+    inverse_permutation_.resize(n);
+    for (std::int64_t k = 0; k < n; ++k) inverse_permutation_[perm[k]] = k;
+  }
+  std::size_t entries = 0;
+  for (const Column& column : columns) entries += column.size();
+  cholmod_sparse* update_matrix = cholmod_l_allocate_sparse(
+      n, columns.size(), entries, /*sorted=*/1, /*packed=*/1, 0, CHOLMOD_REAL, &c);
+  check(c, update_matrix != nullptr, "cholmod_l_allocate_sparse");
+  auto* p = static_cast<std::int64_t*>(update_matrix->p);
+  auto* i = static_cast<std::int64_t*>(update_matrix->i);
+  auto* x = static_cast<double*>(update_matrix->x);
+  std::int64_t k = 0;
+  for (std::size_t j = 0; j < columns.size(); ++j) {
+    p[j] = k;
+    Column sorted;
+    for (const auto& [row, value] : columns[j])
+      sorted.push_back({inverse_permutation_[row], value});
+    std::sort(sorted.begin(), sorted.end());
+    for (const auto& [row, value] : sorted) {
+      i[k] = row;
+      x[k++] = value;
+    }
+  }
+  p[columns.size()] = k;
+  const int ok = cholmod_l_updown(downdate ? 0 : 1, update_matrix, factor, &c);
+  const int status = c.status;
+  cholmod_l_free_sparse(&update_matrix, &c);
+  if (status == CHOLMOD_NOT_POSDEF) {
+    factorized_ = false;
+    throw Error(
+        "cholmod_l_updown: the updated stiffness matrix is not positive definite: part of "
+        "the body can move without resistance");
+  }
+  check(c, ok, "cholmod_l_updown");
+}
+
+namespace {
+
+// The columns of a simplicial factor (column j starts at start[j] with its diagonal and
+// lists count[j] rows) that a forward solve from the given rows can change: every column
+// reachable along the graph of L, whose edges run from column j to the rows below its
+// diagonal. Returned in reverse topological order (a depth-first post-order).
+std::vector<std::int64_t> reached_columns(const std::vector<std::int64_t>& rows,
+                                          const std::int64_t* start, const std::int64_t* count,
+                                          const std::int64_t* row, std::int64_t n) {
+  std::vector<char> reached(n, 0);
+  std::vector<std::int64_t> order;
+  std::vector<std::pair<std::int64_t, std::int64_t>> stack;  // column, next entry to look at
+  for (std::int64_t root : rows) {
+    if (reached[root]) continue;
+    reached[root] = 1;
+    stack.push_back({root, 1});
+    while (!stack.empty()) {
+      auto& [j, next] = stack.back();
+      std::int64_t child = -1;
+      while (next < count[j] && child < 0) {
+        const std::int64_t i = row[start[j] + next++];
+        if (!reached[i]) child = i;
+      }
+      if (child < 0) {
+        order.push_back(j);
+        stack.pop_back();
+      } else {
+        reached[child] = 1;
+        stack.push_back({child, 1});
+      }
+    }
+  }
+  return order;
+}
+
+}  // namespace
+
+bool CholeskyFactor::solve_sparse(const Column& b, double* x) {
+  if (!factorized_) throw Error("CholeskyFactor::solve_sparse called before a successful factorization");
+  const cholmod_factor& f = *state_->factor;
+  const std::int64_t n = static_cast<std::int64_t>(f.n);
+  if (f.is_super || f.is_ll || static_cast<std::int64_t>(inverse_permutation_.size()) != n)
+    return false;
+  const auto* start = static_cast<const std::int64_t*>(f.p);
+  const auto* count = static_cast<const std::int64_t*>(f.nz);
+  const auto* row = static_cast<const std::int64_t*>(f.i);
+  const auto* value = static_cast<const double*>(f.x);
+  const auto* perm = static_cast<const std::int64_t*>(f.Perm);
+  // P b, then L y = P b over the reached columns only. In the simplicial LDL' form each
+  // column starts with its diagonal (D(j, j)); the entries below it are L(i, j).
+  std::vector<double> y(n, 0.0);
+  std::vector<std::int64_t> rows;
+  for (const auto& [r, v] : b) {
+    y[inverse_permutation_[r]] += v;
+    rows.push_back(inverse_permutation_[r]);
+  }
+  const std::vector<std::int64_t> order = reached_columns(rows, start, count, row, n);
+  for (auto it = order.rbegin(); it != order.rend(); ++it) {
+    const std::int64_t j = *it;
+    if (row[start[j]] != j) return false;
+    const double yj = y[j];
+    if (yj == 0) continue;
+    for (std::int64_t k = 1; k < count[j]; ++k) y[row[start[j] + k]] -= value[start[j] + k] * yj;
+  }
+  // D L' z = y over every column (the solution is dense): CHOLMOD's own simplicial solve,
+  // which treats runs of columns with one pattern together. Then x = P' z.
+  cholmod_common& c = state_->common;
+  cholmod_dense forward{};
+  forward.nrow = forward.d = forward.nzmax = static_cast<std::size_t>(n);
+  forward.ncol = 1;
+  forward.x = y.data();
+  forward.xtype = CHOLMOD_REAL;
+  forward.dtype = CHOLMOD_DOUBLE;
+  const int ok = cholmod_l_solve2(CHOLMOD_DLt, state_->factor, &forward, nullptr,
+                                  &state_->solution, nullptr, &state_->work_y, &state_->work_e, &c);
+  check(c, ok, "cholmod_l_solve2");
+  const double* z = static_cast<const double*>(state_->solution->x);
+  for (std::int64_t k = 0; k < n; ++k) x[perm[k]] = z[k];
+  return true;
+}
+
+// The column (in the matrix's own numbering) of the smallest diagonal entry of the
+// supernodal factor: where a nearly free motion shows.
+std::int64_t CholeskyFactor::smallest_pivot_column() const {
+  const cholmod_factor& f = *state_->factor;
+  if (!f.is_super) return -1;
+  const auto* super = static_cast<const std::int64_t*>(f.super);
+  const auto* pi = static_cast<const std::int64_t*>(f.pi);
+  const auto* px = static_cast<const std::int64_t*>(f.px);
+  const auto* x = static_cast<const double*>(f.x);
+  const auto* perm = static_cast<const std::int64_t*>(f.Perm);
+  std::int64_t smallest = -1;
+  double value = 0;
+  for (std::size_t s = 0; s < f.nsuper; ++s) {
+    const std::int64_t rows = pi[s + 1] - pi[s];
+    for (std::int64_t k = 0; k < super[s + 1] - super[s]; ++k) {
+      const double diagonal = std::abs(x[px[s] + k * rows + k]);
+      if (smallest < 0 || diagonal < value) {
+        smallest = super[s] + k;
+        value = diagonal;
+      }
+    }
+  }
+  return smallest < 0 ? -1 : perm[smallest];
+}
+
+std::int64_t CholeskyFactor::factor_nonzeros() const {
+  if (!state_->factor) return state_->symbolic ? static_cast<std::int64_t>(state_->common.lnz) : 0;
+  const cholmod_factor& f = *state_->factor;
+  if (f.is_super) {
+    // Count the nonzeros of the supernodal factor from its supernode dimensions.
+    const auto* super = static_cast<const std::int64_t*>(f.super);
+    const auto* pi = static_cast<const std::int64_t*>(f.pi);
+    std::int64_t count = 0;
+    for (std::size_t s = 0; s < f.nsuper; ++s) {
+      const std::int64_t columns = super[s + 1] - super[s], rows = pi[s + 1] - pi[s];
+      count += columns * rows - columns * (columns - 1) / 2;
+    }
+    return count;
+  }
+  return static_cast<std::int64_t>(state_->common.lnz);
+}
+
+}  // namespace latfrac
