@@ -6,9 +6,11 @@
 #include <limits>
 #include <numbers>
 
+#include "criterion_calls.h"
 #include "latfrac/base/error.h"
 
 using namespace latfrac;
+using namespace latfrac::testing;
 
 namespace {
 constexpr double MPa = 1e6;
@@ -268,7 +270,11 @@ TEST_CASE("the critical-plane reading: Rankine, Tresca and the elliptic maximum 
   // r = 30, g(x) = (30 x / 50)^2 + (30^2 / 40^2)(1 - x^2) is largest at x = 0: 0.5625.
   CHECK(critical_plane_index(Criterion::elliptic, {0, 0, 0, 0, 30 * MPa, 0}, 2, sigma0, tau0)
             .value == Approx(0.5625));
-  CHECK_THROWS_AS(critical_plane_index(Criterion::drucker_prager, tilted, 2, sigma0, tau0), Error);
+  // Drucker-Prager is a function of the tensor's invariants: its tensor index is that
+  // function (psi = 30 deg, as criterion_object sets it), whatever the reading.
+  const DruckerPragerConstants dp = drucker_prager_constants(30, 2);
+  CHECK(criterion_object(Criterion::drucker_prager, 2)->tensor_index(tilted, {sigma0, tau0}).value ==
+        Approx(drucker_prager_index(tilted, dp.alpha, dp.k_per_cohesion * tau0).value));
 }
 
 TEST_CASE("the critical-plane reading equals the largest f over sampled planes", "[criterion]") {

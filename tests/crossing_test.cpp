@@ -7,9 +7,11 @@
 #include <random>
 
 #include "latfrac/criteria/criterion.h"
+#include "criterion_calls.h"
 #include "latfrac/base/error.h"
 
 using namespace latfrac;
+using namespace latfrac::testing;
 
 namespace {
 

@@ -12,9 +12,11 @@
 #include "latfrac/criteria/crossing.h"
 #include "latfrac/solvers/equilibrium.h"
 #include "latfrac/criteria/failure_evaluator.h"
+#include "criterion_calls.h"
 #include "scenes.h"
 
 using namespace latfrac;
+using namespace latfrac::testing;
 
 namespace {
 

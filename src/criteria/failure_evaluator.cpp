@@ -1,4 +1,4 @@
-// Failure indices of the bonds of a model.
+// Failure indices of the bonds of a model, and their crossings along affine paths.
 #include "latfrac/criteria/failure_evaluator.h"
 
 #include <algorithm>
@@ -7,11 +7,14 @@
 
 namespace latfrac {
 
-FailureEvaluator::FailureEvaluator(const Strength& strength, const Model& model)
-    : parameters_(resolve_criterion(strength, model.dim())),
-      bond_stress_(strength.bond_stress),
-      uses_tensor_(parameters_.criterion == Criterion::drucker_prager ||
-                   strength.bond_stress != BondStress::strain) {
+FailureEvaluator::FailureEvaluator(std::shared_ptr<const FailureCriterion> criterion,
+                                   BondStress reading, const Model& model)
+    : criterion_(std::move(criterion)), bond_stress_(reading) {
+  reading_ = criterion_->tensor_only() || reading == BondStress::critical_plane
+                 ? Reading::tensor_index
+             : reading == BondStress::tensor ? Reading::resolved_tensor
+                                             : Reading::strain;
+  uses_tensor_ = reading_ != Reading::strain;
   const std::int64_t bonds = model.lattice.bond_count();
   normal_scale_.resize(bonds);
   shear_scale_.resize(bonds);
@@ -21,6 +24,9 @@ FailureEvaluator::FailureEvaluator(const Strength& strength, const Model& model)
     shear_scale_[b] = model.bond_shear_modulus[b] / (length * model.bond_tau0[b]);
   }
 }
+
+FailureEvaluator::FailureEvaluator(const Strength& strength, const Model& model)
+    : FailureEvaluator(make_criterion(strength, model.dim()), strength.bond_stress, model) {}
 
 VoigtStress bond_stress_tensor(const std::vector<double>& node_stress, const Bond& bond) {
   VoigtStress s{};
@@ -32,27 +38,20 @@ VoigtStress bond_stress_tensor(const std::vector<double>& node_stress, const Bon
 FailureIndex FailureEvaluator::bond_index(const Model& model, const Vector& displacement,
                                           std::int64_t bond,
                                           const std::vector<double>& node_stress) const {
-  if (uses_tensor_) {
+  const BondStrength strength = strength_of(model, bond);
+  if (reading_ != Reading::strain) {
     const VoigtStress stress = bond_stress_tensor(node_stress, model.lattice.bonds[bond]);
-    if (parameters_.criterion == Criterion::drucker_prager)
-      return drucker_prager_index(stress, parameters_.dp_alpha,
-                                  parameters_.dp_k_per_cohesion * model.bond_tau0[bond]);
-    if (bond_stress_ == BondStress::critical_plane)
-      return critical_plane_index(parameters_.criterion, stress, model.dim(),
-                                  model.bond_sigma0[bond], model.bond_tau0[bond]);
+    if (reading_ == Reading::tensor_index) return criterion_->tensor_index(stress, strength);
     const ResolvedStress r = resolve_on(stress, model.lattice.bond_direction[bond]);
-    return failure_index(parameters_.criterion, r.normal, r.shear.norm(),
-                         model.bond_sigma0[bond], model.bond_tau0[bond]);
+    return criterion_->index(r.normal, r.shear.norm(), strength);
   }
   // The bond law's own normal and shear displacement (the current direction under large
   // kinematics).
   const double length = model.lattice.bond_length[bond];
   const BondDeformation d = model.law->deformation({model.lattice.bond_direction[bond], length},
                                                    model.bond_displacement(displacement, bond));
-  const double dn = d.normal, shear = d.shear.norm();
-  return failure_index(parameters_.criterion, model.bond_young[bond] * dn / length,
-                       model.bond_shear_modulus[bond] * shear / length, model.bond_sigma0[bond],
-                       model.bond_tau0[bond]);
+  return criterion_->index(model.bond_young[bond] * d.normal / length,
+                           model.bond_shear_modulus[bond] * d.shear.norm() / length, strength);
 }
 
 void FailureEvaluator::evaluate(const Model& model, const Vector& displacement,
@@ -70,12 +69,10 @@ void FailureEvaluator::evaluate(const Model& model, const Vector& displacement,
   }
 }
 
-// The hot loop of every cascade. For the stress-based criteria the ranking quantity is
-// the normal ratio (tensile), f itself (elliptic) or the larger squared ratio
-// (tensile_or_shear): monotone in f, and free of square roots.
+// The hot loop of every cascade: on the strain reading with a linear law the criterion
+// ranks from the normal ratio and the squared shear ratio, free of square roots.
 double FailureEvaluator::rank(const Model& model, const Vector& displacement, std::int64_t b,
                               const std::vector<double>& node_stress) const {
-  const Criterion criterion = parameters_.criterion;
   if (uses_tensor_ || !model.law->is_linear()) {
     return bond_index(model, displacement, b, node_stress).value;
   }
@@ -85,9 +82,7 @@ double FailureEvaluator::rank(const Model& model, const Vector& displacement, st
   const double normal = std::max(dn, 0.0) * normal_scale_[b];
   const double shear_squared =
       std::max(du.squaredNorm() - dn * dn, 0.0) * shear_scale_[b] * shear_scale_[b];
-  return criterion == Criterion::tensile    ? normal
-         : criterion == Criterion::elliptic ? normal * normal + shear_squared
-                                            : std::max(normal * normal, shear_squared);
+  return criterion_->rank(normal, shear_squared);
 }
 
 double FailureEvaluator::rank_tolerance() const {
@@ -135,6 +130,49 @@ std::vector<CriticalBond> FailureEvaluator::critical_group(const Model& model,
             [](const CriticalBond& p, const CriticalBond& q) { return p.bond < q.bond; });
   if (largest < threshold) group.clear();
   return group;
+}
+
+PathStresses FailureEvaluator::path_stresses(const Model& model, const Vector& at_zero,
+                                             const Vector& per_lambda, double sign) const {
+  PathStresses path{at_zero, sign * per_lambda, {}, {}};
+  if (uses_tensor_) {
+    path.stress_at_zero = node_stresses(model, at_zero);
+    path.stress_per_unit = node_stresses(model, at_zero + per_lambda);
+    for (std::size_t k = 0; k < path.stress_per_unit.size(); ++k)
+      path.stress_per_unit[k] = sign * (path.stress_per_unit[k] - path.stress_at_zero[k]);
+  }
+  return path;
+}
+
+// Along the path every bond quantity is affine in s: the stress tensor, its resolution on
+// the bond direction (linear in the tensor), and the strains.
+double FailureEvaluator::first_crossing(const Model& model, std::int64_t b,
+                                        const PathStresses& path, double from, double to,
+                                        double needed_until) const {
+  const BondStrength strength = strength_of(model, b);
+  if (reading_ != Reading::strain) {
+    const Bond& bond = model.lattice.bonds[b];
+    const VoigtStress s0 = bond_stress_tensor(path.stress_at_zero, bond);
+    const VoigtStress s1 = bond_stress_tensor(path.stress_per_unit, bond);
+    if (reading_ == Reading::tensor_index)
+      return criterion_->first_tensor_crossing(s0, s1, strength, from, to, needed_until);
+    const Vec3& n0 = model.lattice.bond_direction[b];
+    const ResolvedStress r0 = resolve_on(s0, n0);
+    const ResolvedStress r1 = resolve_on(s1, n0);
+    const AffineBondStress affine{r0.normal, r1.normal, r0.shear, r1.shear};
+    return criterion_->first_crossing(affine, strength, from, to);
+  }
+  const Vec3& n0 = model.lattice.bond_direction[b];
+  const double length = model.lattice.bond_length[b];
+  const Vec3 du0 = model.bond_displacement(path.at_zero, b);
+  const Vec3 du1 = model.bond_displacement(path.per_unit, b);
+  const double e = model.bond_young[b] / length, g = model.bond_shear_modulus[b] / length;
+  AffineBondStress affine;
+  affine.normal0 = e * n0.dot(du0);
+  affine.normal1 = e * n0.dot(du1);
+  affine.shear0 = g * (du0 - n0.dot(du0) * n0);
+  affine.shear1 = g * (du1 - n0.dot(du1) * n0);
+  return criterion_->first_crossing(affine, strength, from, to);
 }
 
 }  // namespace latfrac

@@ -3,8 +3,6 @@
 
 #include <cmath>
 
-#include "latfrac/criteria/crossing.h"
-#include "latfrac/mechanics/node_stress.h"
 
 namespace latfrac {
 namespace {
@@ -28,71 +26,17 @@ PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
   const double sign = to < from ? -1.0 : 1.0;  // search in s = sign * lambda, increasing
   const double s_from = sign * from, s_to = sign * to;
   const FullPath full = full_path(model, path);
-  const CriterionParameters& criterion = evaluator.parameters();
-  const bool drucker_prager = criterion.criterion == Criterion::drucker_prager;
-  std::vector<double> stress0, stress1;
-  if (evaluator.uses_tensor()) {
-    stress0 = node_stresses(model, full.at_zero);
-    stress1 = node_stresses(model, full.at_zero + full.per_lambda);
-    for (std::size_t k = 0; k < stress1.size(); ++k) stress1[k] -= stress0[k];
-  }
+  const PathStresses stresses = evaluator.path_stresses(model, full.at_zero, full.per_lambda, sign);
   std::vector<double> crossing(model.lattice.bond_count(), std::numeric_limits<double>::infinity());
   double first = std::numeric_limits<double>::infinity();
   for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
     if (!model.intact[b]) continue;
-    double s;
-    if (drucker_prager) {
-      const Bond& bond = model.lattice.bonds[b];
-      VoigtStress s0 = bond_stress_tensor(stress0, bond), s1 = bond_stress_tensor(stress1, bond);
-      for (double& value : s1) value *= sign;
-      s = first_crossing_drucker_prager(s0, s1, criterion.dp_alpha,
-                                        criterion.dp_k_per_cohesion * model.bond_tau0[b], s_from,
-                                        s_to);
-    } else if (evaluator.bond_stress() == BondStress::critical_plane) {
-      // f is convex in lambda but not a polynomial: bisection, only up to the earliest
-      // crossing found so far (a later one cannot come first), with room for ties.
-      const Bond& bond = model.lattice.bonds[b];
-      const VoigtStress s0 = bond_stress_tensor(stress0, bond);
-      VoigtStress s1 = bond_stress_tensor(stress1, bond);
-      for (double& value : s1) value *= sign;
-      const auto f = [&](double l) {
-        VoigtStress at;
-        for (int k = 0; k < 6; ++k) at[k] = s0[k] + l * s1[k];
-        return critical_plane_index(criterion.criterion, at, model.dim(), model.bond_sigma0[b],
-                                    model.bond_tau0[b])
-            .value;
-      };
-      const double until =
-          std::isfinite(first)
-              ? std::min(s_to, first + 2 * FailureEvaluator::tie_tolerance *
-                                           std::max(std::abs(first), 1e-300))
-              : s_to;
-      s = first_crossing_convex(f, s_from, until);
-    } else if (evaluator.uses_tensor()) {
-      // The resolved stresses are linear in the tensor, so affine in lambda with it.
-      const Bond& bond = model.lattice.bonds[b];
-      const Vec3& n0 = model.lattice.bond_direction[b];
-      VoigtStress s1 = bond_stress_tensor(stress1, bond);
-      for (double& value : s1) value *= sign;
-      const ResolvedStress r0 = resolve_on(bond_stress_tensor(stress0, bond), n0);
-      const ResolvedStress r1 = resolve_on(s1, n0);
-      const AffineBondStress affine{r0.normal, r1.normal, r0.shear, r1.shear};
-      s = first_crossing(criterion.criterion, affine, model.bond_sigma0[b], model.bond_tau0[b],
-                         s_from, s_to);
-    } else {
-      const Vec3& n0 = model.lattice.bond_direction[b];
-      const double length = model.lattice.bond_length[b];
-      const Vec3 du0 = model.bond_displacement(full.at_zero, b);
-      const Vec3 du1 = sign * model.bond_displacement(full.per_lambda, b);
-      const double e = model.bond_young[b] / length, g = model.bond_shear_modulus[b] / length;
-      AffineBondStress affine;
-      affine.normal0 = e * n0.dot(du0);
-      affine.normal1 = e * n0.dot(du1);
-      affine.shear0 = g * (du0 - n0.dot(du0) * n0);
-      affine.shear1 = g * (du1 - n0.dot(du1) * n0);
-      s = first_crossing(criterion.criterion, affine, model.bond_sigma0[b], model.bond_tau0[b],
-                         s_from, s_to);
-    }
+    // Only a crossing up to the earliest found so far (with room for ties) can matter.
+    const double needed_until =
+        std::isfinite(first)
+            ? first + 2 * FailureEvaluator::tie_tolerance * std::max(std::abs(first), 1e-300)
+            : std::numeric_limits<double>::infinity();
+    const double s = evaluator.first_crossing(model, b, stresses, s_from, s_to, needed_until);
     crossing[b] = s;
     first = std::min(first, s);
   }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "latfrac/criteria/criterion.h"
 #include "problem_reader.h"
 
 namespace latfrac::problem {
@@ -116,8 +117,8 @@ std::optional<Strength> read_strength(const Section& top) {
       top.section("strength", {"criterion", "sigma0", "tau0", "friction_angle", "tau0_factor",
                               "bond_stress"});
   if (!s) return std::nullopt;
-  const std::vector<std::string_view> criteria = {"tensile", "tensile_or_shear", "elliptic",
-                                                  "drucker_prager"};
+  const std::vector<std::string_view> criteria(criterion_names().begin(),
+                                               criterion_names().end());
   Strength strength;
   strength.criterion = static_cast<Criterion>(s->required_choice("criterion", criteria));
   strength.sigma0 = s->required_number("sigma0", positive("Pa"));
@@ -134,14 +135,12 @@ std::optional<Strength> read_strength(const Section& top) {
             "from friction_angle",
             "allowed: tau0 alone, or friction_angle with tau0_factor");
   }
-  const bool needs_shear = strength.criterion == Criterion::tensile_or_shear ||
-                           strength.criterion == Criterion::elliptic;
-  if (needs_shear && !strength.tau0 && !strength.friction_angle) {
+  if (needs_shear_strength(strength.criterion) && !strength.tau0 && !strength.friction_angle) {
     s->fail_missing("tau0", "criterion " + criterion +
                                 " needs a shear strength: tau0 > 0 (Pa), "
                                 "or friction_angle (degrees) to derive it");
   }
-  if (strength.criterion == Criterion::drucker_prager && !strength.friction_angle) {
+  if (needs_friction_angle(strength.criterion) && !strength.friction_angle) {
     s->fail_missing("friction_angle",
                     "criterion " + criterion + " needs " +
                         Range{0, 90, false, true, "degrees"}.describe("friction_angle"));

@@ -1,33 +1,36 @@
-// Fracture criteria: the failure index f of a bond (it breaks when f >= 1) and its mode.
+// Fracture criteria behind one interface: a bond's failure index f (it breaks when f >= 1),
+// its mode, and the exact lambda at which f reaches 1 on an affine path.
 //
-// With <x>+ = max(x, 0), sigma_n the bond's normal stress (tension positive) and tau >= 0
+// With <x>+ = max(x, 0), sigma_n a bond's normal stress (tension positive) and tau >= 0
 // its shear stress (model.md section 4, docs/criteria.md):
-//   tensile           f = <sigma_n>+ / sigma0
-//   tensile_or_shear  f = max(<sigma_n>+ / sigma0, tau / tau0)
-//   elliptic          f = (<sigma_n>+ / sigma0)^2 + (tau / tau0)^2   (the paper's Eq. 3)
-//   drucker_prager    f = (sqrt(J2) + alpha I1) / k on the bond's stress tensor
+//   tensile           f = <sigma_n>+ / sigma0                          (tensile.cpp)
+//   tensile_or_shear  f = max(<sigma_n>+ / sigma0, tau / tau0)         (tensile_or_shear.cpp)
+//   elliptic          f = (<sigma_n>+ / sigma0)^2 + (tau / tau0)^2     (elliptic.cpp; the paper's Eq. 3)
+//   drucker_prager    f = (sqrt(J2) + alpha I1) / k on the stress tensor (drucker_prager.cpp)
 // Compression never drives failure in the first three. The mode is tensile when the
 // normal part is the larger part of f, shear otherwise; for Drucker-Prager it is tensile
 // when the mean-stress term alpha I1 is at least sqrt(J2).
+//
+// Adding a criterion: a class implementing FailureCriterion in its own file, a value in
+// the Criterion enumeration (strength.h), and one entry in the registry (criterion.cpp).
+// make_criterion refuses a criterion without an entry; nothing falls back to another.
 #pragma once
 
-#include <Eigen/Core>
-#include <array>
-#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
 
+#include "latfrac/criteria/crossing.h"
 #include "latfrac/criteria/strength.h"
+#include "latfrac/criteria/stress.h"
 
 namespace latfrac {
 
-enum class BreakMode : std::int8_t { tensile = 0, shear = 1, precut = 2 };
-
-struct FailureIndex {
-  double value = 0;
-  BreakMode mode = BreakMode::tensile;
+// A bond's strengths, Pa: tensile strength sigma0 and shear cohesion tau0 (+inf: none).
+struct BondStrength {
+  double sigma0 = 0;
+  double tau0 = 0;
 };
-
-// Voigt order xx, yy, zz, yz, xz, xy (Pa, tension positive).
-using VoigtStress = std::array<double, 6>;
 
 // Drucker-Prager constants for f = (sqrt(J2) + alpha I1) / (k_per_cohesion * c).
 //   3-D, matched to Mohr-Coulomb on the compression meridian:
@@ -43,6 +46,7 @@ DruckerPragerConstants drucker_prager_constants(double friction_angle_deg, int d
 // Resolved strengths and Drucker-Prager constants of a scene's [strength] section.
 struct CriterionParameters {
   Criterion criterion = Criterion::elliptic;
+  int dim = 2;
   double sigma0 = 0;  // Pa
   // Pa: given, or derived from the friction angle; +inf when neither is given (only the
   // tensile criterion allows that).
@@ -59,44 +63,50 @@ CriterionParameters resolve_criterion(const Strength& strength, int dim);
 // Mohr-Coulomb shear cohesion from the tensile strength: m sigma0 (1 + sin psi) / (2 cos psi).
 double derived_tau0(double sigma0, double friction_angle_deg, double factor_m);
 
-// Stress-based indices from sigma_n = E eps_n and tau = G gamma (Pa) with the bond's own
-// strengths. tau0 may be +inf (no shear failure). Drucker-Prager is not one of these:
-// it needs the stress tensor (drucker_prager_index); passing it throws Error.
-FailureIndex failure_index(Criterion criterion, double sigma_n, double tau, double sigma0,
-                           double tau0);
+class FailureCriterion {
+ public:
+  explicit FailureCriterion(const CriterionParameters& parameters) : parameters_(parameters) {}
+  virtual ~FailureCriterion() = default;
 
-// Drucker-Prager on the bond's stress tensor; in 2-D, yy is already nu (xx + zz).
-// k = k_per_cohesion * c.
-FailureIndex drucker_prager_index(const VoigtStress& stress, double alpha, double k);
+  // f from a bond's normal stress sigma_n and shear stress tau (the strain and tensor
+  // readings). Throws Error for a criterion that only a stress tensor defines.
+  virtual FailureIndex index(double sigma_n, double tau, const BondStrength& strength) const = 0;
+  // f of a stress tensor: the largest f over all planes through the point (the
+  // critical-plane reading), or the criterion's own function of the invariants.
+  virtual FailureIndex tensor_index(const VoigtStress& stress,
+                                    const BondStrength& strength) const = 0;
+  // The smallest l in (from, to] with index() >= 1 on sigma_n and the shear vector affine
+  // in l; `from` itself when f(from) >= 1; +infinity when f stays below 1.
+  virtual double first_crossing(const AffineBondStress& stress, const BondStrength& strength,
+                                double from, double to) const = 0;
+  // The same for tensor_index() on S(l) = s0 + l s1. By default bisection on the convex f;
+  // a crossing later than `needed_until` cannot matter to the caller (a later bond cannot
+  // come first), so the bisection may stop looking there.
+  virtual double first_tensor_crossing(const VoigtStress& s0, const VoigtStress& s1,
+                                       const BondStrength& strength, double from, double to,
+                                       double needed_until) const;
+  // A quantity that grows with index() on the strain reading, cheap to compute (no square
+  // root), from the normal ratio <sigma_n>+ / sigma0 and the squared shear ratio
+  // (tau / tau0)^2; ranks bonds in the hot loop of every cascade.
+  virtual double rank(double normal_ratio, double shear_ratio_squared) const = 0;
+  // True when only the stress tensor defines f (the bond-stress readings do not apply).
+  virtual bool tensor_only() const { return false; }
 
-// A stress tensor resolved on the unit direction n: the normal stress n.S.n and the shear
-// traction vector S n - (n.S.n) n (Pa, tension positive). Linear in S.
-struct ResolvedStress {
-  double normal = 0;
-  Eigen::Vector3d shear = Eigen::Vector3d::Zero();
+  const CriterionParameters& parameters() const { return parameters_; }
+  int dim() const { return parameters_.dim; }
+
+ private:
+  CriterionParameters parameters_;
 };
-ResolvedStress resolve_on(const VoigtStress& stress, const Eigen::Vector3d& n);
 
-// The largest f over all planes through the point (bond_stress = "critical_plane"), from
-// the outer Mohr circle: centre c = (s1 + s3) / 2, radius r = (s1 - s3) / 2 with s1 >= s3
-// the extreme principal stresses (in 3-D of the full tensor; in 2-D of the x-z part, the
-// planes that contain the y axis). A plane whose normal makes the angle phi / 2 with s1
-// carries sigma_n = c + r cos phi and tau = r sin phi, and every criterion here grows
-// with <sigma_n>+ and tau, so its largest value over all planes lies on that circle:
-//   tensile           f = <s1>+ / sigma0                       (Rankine)
-//   tensile_or_shear  f = max(<s1>+ / sigma0, r / tau0)        (Rankine or Tresca)
-//   elliptic          f = max over phi of (<c + r cos phi>+ / sigma0)^2 + (r sin phi / tau0)^2
-// The mode is that of the maximising plane. drucker_prager throws Error (it is already a
-// function of the tensor's invariants: drucker_prager_index).
-FailureIndex critical_plane_index(Criterion criterion, const VoigtStress& stress, int dim,
-                                  double sigma0, double tau0);
+// The criterion of a [strength] section, its strengths resolved once (resolve_criterion).
+std::shared_ptr<const FailureCriterion> make_criterion(const Strength& strength, int dim);
 
-// I1 = trace.
-double first_invariant(const VoigtStress& stress);
-// The symmetric bilinear form whose diagonal is J2: (s_a : s_b) / 2 with s the deviators,
-// Voigt shear components counted twice. Written with differences of normal components so
-// that a large mean stress does not cancel against the deviator.
-double j2_product(const VoigtStress& a, const VoigtStress& b);
-inline double second_deviatoric_invariant(const VoigtStress& s) { return j2_product(s, s); }
+// The names a problem file may give, in the order of the Criterion enumeration.
+const std::vector<std::string>& criterion_names();
+// Whether a criterion needs a shear strength (tau0, or a friction angle to derive it) and
+// a friction angle of its own.
+bool needs_shear_strength(Criterion criterion);
+bool needs_friction_angle(Criterion criterion);
 
 }  // namespace latfrac

@@ -13,14 +13,12 @@
 //                     keeping only roots with k - alpha I1(l) >= 0
 // Every f is convex along an affine path (a norm plus a linear term, or a sum of squares
 // of such), so once f(from) < 1 there is at most one crossing after 'from' and f rises
-// through it.
+// through it. Each criterion's own crossing is in its file; this header has what they share.
 #pragma once
 
 #include <Eigen/Core>
 #include <array>
 #include <functional>
-
-#include "latfrac/criteria/strength.h"
 
 namespace latfrac {
 
@@ -29,21 +27,11 @@ struct AffineBondStress {
   Eigen::Vector3d shear0 = Eigen::Vector3d::Zero(), shear1 = Eigen::Vector3d::Zero();  // Pa
 };
 
-// Smallest l in (from, to] with f(l) >= 1; 'from' itself when f(from) >= 1; +infinity when
-// f stays below 1 on the interval. tau0 may be +inf. Criterion::drucker_prager throws Error
-// (it needs the stress tensor: first_crossing_drucker_prager).
-double first_crossing(Criterion criterion, const AffineBondStress& stress, double sigma0,
-                      double tau0, double from, double to);
-
-// The same for f = (sqrt(J2) + alpha I1) / k on S(l) = s0 + l s1 (Voigt, Pa).
-double first_crossing_drucker_prager(const std::array<double, 6>& s0,
-                                     const std::array<double, 6>& s1, double alpha, double k,
-                                     double from, double to);
-
-// The same for any f that is continuous and convex along the path (the critical-plane
-// reading: a maximum over planes of convex functions of l): once f(from) < 1, f reaches 1
-// in (from, to] only if f(to) >= 1, and then once. Bisection brackets that point to
-// within a few ulps of l and returns the upper end, where f >= 1.
+// The smallest l in (from, to] with f(l) >= 1 for any f that is continuous and convex
+// along the path (the critical-plane reading: a maximum over planes of convex functions of
+// l): once f(from) < 1, f reaches 1 in (from, to] only if f(to) >= 1, and then once.
+// Bisection brackets that point to within a few ulps of l and returns the upper end, where
+// f >= 1. `from` when f(from) >= 1, +infinity when f(to) < 1.
 double first_crossing_convex(const std::function<double(double)>& f, double from, double to);
 
 // The real roots of a x^2 + b x + c = 0, ascending, without cancellation (the root of

@@ -1,14 +1,16 @@
-// Failure indices of every intact bond: which bond breaks next, and how.
+// Failure indices of every intact bond: which bond breaks next, how, and when on a path.
 //
 // A bond's normal and shear stresses come from its strains and its layer's moduli,
 // sigma_n = E dn / L0 and tau = G |ds| / L0 (model.md section 2), or, with
 // bond_stress = "tensor", from the bond's stress tensor resolved on its direction, or,
 // with bond_stress = "critical_plane", from that tensor on the plane where f is largest.
-// Drucker-Prager always uses that tensor, the mean of the two nodes' virial stresses.
-// The criteria themselves are in criterion.h.
+// A criterion that only a tensor defines (Drucker-Prager) always uses the tensor, the
+// mean of the two nodes' virial stresses. The criteria themselves are in criterion.h;
+// this class is the one place that chooses the reading.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "latfrac/criteria/criterion.h"
@@ -25,9 +27,20 @@ struct CriticalBond {
 // The bond's stress tensor: the mean of its two nodes' virial stresses (node_stress.h).
 VoigtStress bond_stress_tensor(const std::vector<double>& node_stress, const Bond& bond);
 
+// An affine path u(s) = at_zero + s per_unit of full displacements, in the search
+// variable s = sign * lambda (so that compression reads like extension), and, when the
+// reading needs them, the node stresses at s = 0 and per unit s.
+struct PathStresses {
+  Vector at_zero, per_unit;
+  std::vector<double> stress_at_zero, stress_per_unit;
+};
+
 class FailureEvaluator {
  public:
   // Reads the model's per-bond moduli, lengths and strengths once.
+  FailureEvaluator(std::shared_ptr<const FailureCriterion> criterion, BondStress reading,
+                   const Model& model);
+  // The same with the criterion of a [strength] section (make_criterion).
   FailureEvaluator(const Strength& strength, const Model& model);
 
   // f of every bond (0 for broken bonds) and the break mode of each.
@@ -42,22 +55,39 @@ class FailureEvaluator {
   // Failure indices equal to this relative tolerance count as equal (docs/robustness.md).
   static constexpr double tie_tolerance = 1e-12;
 
-  const CriterionParameters& parameters() const { return parameters_; }
-  // True when f comes from the bonds' stress tensors (Drucker-Prager, or bond_stress =
-  // "tensor" or "critical_plane"), which need the node stresses.
+  // The path u(lambda) = at_zero + lambda per_lambda in s = sign * lambda, with the node
+  // stresses the reading needs.
+  PathStresses path_stresses(const Model& model, const Vector& at_zero, const Vector& per_lambda,
+                             double sign) const;
+  // The smallest s in (from, to] at which bond b reaches f = 1 on the path; +infinity when
+  // it does not. A crossing after needed_until cannot matter (docs: FailureCriterion).
+  double first_crossing(const Model& model, std::int64_t b, const PathStresses& path, double from,
+                        double to, double needed_until) const;
+
+  const FailureCriterion& criterion() const { return *criterion_; }
+  const CriterionParameters& parameters() const { return criterion_->parameters(); }
+  // True when f comes from the bonds' stress tensors (a tensor-only criterion, or
+  // bond_stress = "tensor" or "critical_plane"), which need the node stresses.
   bool uses_tensor() const { return uses_tensor_; }
   BondStress bond_stress() const { return bond_stress_; }
 
  private:
+  // Where f comes from: the criterion's tensor index, the tensor resolved on the bond
+  // direction, or the bond's strains.
+  enum class Reading { tensor_index, resolved_tensor, strain };
   FailureIndex bond_index(const Model& model, const Vector& displacement, std::int64_t bond,
                           const std::vector<double>& node_stress) const;
+  BondStrength strength_of(const Model& model, std::int64_t bond) const {
+    return {model.bond_sigma0[bond], model.bond_tau0[bond]};
+  }
   // A quantity that grows with f and is cheap to compute (no square root), and the
   // relative tolerance in it that matches tie_tolerance in f.
   double rank(const Model& model, const Vector& displacement, std::int64_t bond,
               const std::vector<double>& node_stress) const;
   double rank_tolerance() const;
-  CriterionParameters parameters_;
+  std::shared_ptr<const FailureCriterion> criterion_;
   BondStress bond_stress_ = BondStress::strain;
+  Reading reading_ = Reading::strain;
   bool uses_tensor_ = false;
   // Per bond: E / (L0 sigma0) and G / (L0 tau0), so that the normal and shear ratios are
   // dn times the first and |ds| times the second.

@@ -1,0 +1,56 @@
+// The tensile-or-shear criterion: f = max(<sigma_n>+ / sigma0, tau / tau0) (critical plane:
+// Rankine or Tresca).
+#include <algorithm>
+
+#include "criterion_makers.h"
+#include "crossing_parts.h"
+#include "mohr_circle.h"
+
+namespace latfrac {
+namespace {
+
+using namespace crossing_parts;
+
+FailureIndex larger_of(double normal, double shear) {
+  return {std::max(normal, shear), normal >= shear ? BreakMode::tensile : BreakMode::shear};
+}
+
+class TensileOrShear final : public FailureCriterion {
+ public:
+  using FailureCriterion::FailureCriterion;
+
+  FailureIndex index(double sigma_n, double tau, const BondStrength& strength) const override {
+    return larger_of(std::max(sigma_n, 0.0) / strength.sigma0, tau / strength.tau0);
+  }
+
+  // The largest normal stress (s1) and the largest shear stress (the circle's radius).
+  FailureIndex tensor_index(const VoigtStress& stress, const BondStrength& strength) const override {
+    const MohrCircle circle = outer_circle(stress, dim());
+    return larger_of(std::max(circle.centre + circle.radius, 0.0) / strength.sigma0,
+                     circle.radius / strength.tau0);
+  }
+
+  // The earlier of the two parts' crossings.
+  double first_crossing(const AffineBondStress& stress, const BondStrength& strength, double from,
+                        double to) const override {
+    const AffineBondStress start = moved_to(stress, from);
+    if (index(start.normal0, start.shear0.norm(), strength).value >= 1) return from;
+    const double length = to - from;
+    const double x = std::min(first_nonnegative(tensile_part(start, strength.sigma0), length),
+                              first_nonnegative(shear_part(start, strength.tau0), length));
+    return to_lambda(from, x, to);
+  }
+
+  // The larger squared ratio.
+  double rank(double normal_ratio, double shear_ratio_squared) const override {
+    return std::max(normal_ratio * normal_ratio, shear_ratio_squared);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<FailureCriterion> make_tensile_or_shear(const CriterionParameters& parameters) {
+  return std::make_unique<TensileOrShear>(parameters);
+}
+
+}  // namespace latfrac
