@@ -46,7 +46,7 @@ void run_case(int dim, long nodes) {
   auto start = std::chrono::steady_clock::now();
   Model model = build_model(scene);
   const double build = seconds_since(start);
-  const std::int64_t n = model.dofs.free_count;
+  const std::int64_t n = model.dofs().free_count;
 
   // Bare CHOLMOD: assemble, analyze, factorize, one two-column solve. Each measurement
   // is the faster of two repetitions, so that neither side pays for cold caches alone.
@@ -59,7 +59,7 @@ void run_case(int dim, long nodes) {
     {
       start = std::chrono::steady_clock::now();
       StiffnessMatrix stiffness(model);
-      stiffness.assemble(model, Vector::Zero(model.dofs.dof_count()));
+      stiffness.assemble(model, Vector::Zero(model.dofs().dof_count()));
       assemble = std::min(assemble, seconds_since(start));
       CholeskyFactor factor(scene.solver.ordering);
       start = std::chrono::steady_clock::now();

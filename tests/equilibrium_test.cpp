@@ -15,14 +15,14 @@ TEST_CASE("KINSOL converges in one Newton iteration on an affine scene", "[equil
   const Scene scene = testing::box_scene(dim, 1000.0, {20e3, 5e3, 10e3}, true);
   Model model = build_model(scene);
   EquilibriumSolver solver(model, scene.solver);
-  Vector u = Vector::Zero(model.dofs.free_count);
+  Vector u = Vector::Zero(model.dofs().free_count);
   const double lambda = 0.01;
   const EquilibriumReport report = solver.solve(lambda, u);
   CHECK(report.newton_iterations == 1);
   CHECK(report.relative_residual < scene.solver.tolerance);
   // Independently: the residual of the returned state, relative to the load.
   const double load =
-      max_abs(model.residual(Vector::Zero(model.dofs.free_count), lambda));
+      max_abs(model.residual(Vector::Zero(model.dofs().free_count), lambda));
   CHECK(max_abs(model.residual(u, lambda)) / load < scene.solver.tolerance);
   CHECK(solver.counters().factorizations == 1);
 }
@@ -36,7 +36,7 @@ TEST_CASE("The affine path from one two-column solve equals Newton at any lambda
   const AffinePath path = solver.affine_path();
   CHECK(solver.counters().factorizations == 1);
   for (double lambda : {0.0, 0.013, -0.02, 0.04}) {
-    Vector u = Vector::Zero(model.dofs.free_count);
+    Vector u = Vector::Zero(model.dofs().free_count);
     solver.solve(lambda, u);
     const Vector from_path = path.at(lambda);
     CHECK(max_abs(u - from_path) / max_abs(from_path) < 1e-9);
@@ -52,7 +52,7 @@ TEST_CASE("A scene with a rigid-body motion fails with a message naming the call
   scene.faces[static_cast<int>(Face::z_min)] = FaceCondition::roller;  // x is unrestrained
   Model model = build_model(scene);
   EquilibriumSolver solver(model, scene.solver);
-  Vector u = Vector::Zero(model.dofs.free_count);
+  Vector u = Vector::Zero(model.dofs().free_count);
   try {
     solver.solve(0.0, u);
     FAIL("no error");

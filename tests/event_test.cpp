@@ -5,7 +5,7 @@
 #include <map>
 #include <set>
 
-#include "latfrac/fracture/continuation.h"
+#include "latfrac/fracture/fracture_run.h"
 #include "latfrac/fracture/initial_supports.h"
 #include "latfrac/mechanics/model.h"
 #include "latfrac/scene/run.h"
@@ -35,7 +35,7 @@ Scene notched_scene() {
 std::set<std::int64_t> broken_set(const RunResult& result) {
   std::set<std::int64_t> broken;
   for (const BreakEvent& e : result.events) {
-    if (e.mode != 2) broken.insert(e.bond);
+    if (e.mode != BreakMode::precut) broken.insert(e.bond);
   }
   return broken;
 }
@@ -102,7 +102,7 @@ TEST_CASE("With the critical-plane reading tensile_or_shear fails in shear at 2 
   const double nu = scene.material.poisson;
   const double plane_strain_modulus = scene.material.young / (1 - nu * nu);
   CHECK(event.events.front().lambda == Approx(2 * 10e6 / plane_strain_modulus).epsilon(1e-9));
-  CHECK(event.events.front().mode == static_cast<int>(BreakMode::shear));
+  CHECK(event.events.front().mode == BreakMode::shear);
 }
 
 TEST_CASE("The event-driven result depends on no stepping parameter", "[continuation]") {
@@ -191,11 +191,11 @@ TEST_CASE("On an affine scene the CVODE route and the closed-form route agree", 
   prepare_supports(model, scene.source_path);
   EquilibriumSolver solver(model, scene.solver);
   ProgressLine progress(false);
-  FractureContinuation continuation(model, *scene.strength, schedule_of(scene), scene.solver,
-                                    solver, progress);
-  continuation.use_integrated_path(true);
   RunResult integrated;
-  continuation.run_event_driven(integrated);
+  FractureRun fracture(model, make_criterion(*scene.strength, 2), scene.strength->bond_stress,
+                       schedule_of(scene), scene.solver, solver, progress, integrated);
+  fracture.use_integrated_path(true);
+  fracture.run();
   REQUIRE(closed_form.events.size() > 3);
   REQUIRE(integrated.events.size() == closed_form.events.size());
   for (std::size_t k = 0; k < closed_form.events.size(); ++k) {

@@ -154,7 +154,8 @@ std::size_t cluster_count(const RunResult& result) {
 }
 
 void add_events(RunResult& result, const std::vector<std::int64_t>& bonds, std::int8_t mode) {
-  for (const std::int64_t b : bonds) result.events.push_back({0.01, b, 1.0, mode, 0});
+  for (const std::int64_t b : bonds)
+    result.events.push_back({0.01, b, 1.0, static_cast<BreakMode>(mode), 0});
 }
 
 // Structural checks that need nothing outside the test: balanced brackets outside strings,

@@ -20,10 +20,12 @@ inline FinalState final_state(const Scene& scene, const RunResult& result) {
   FinalState state{build_model(scene), {}, 0};
   const Snapshot& last = result.snapshots.back();
   state.lambda = last.lambda;
-  state.model.intact = last.bond_intact;
+  ModelEditor editor(state.model);
+  for (std::int64_t b = 0; b < state.model.lattice.bond_count(); ++b)
+    editor.set_state(b, last.bond_intact[b] ? PairState::intact : PairState::open);
   const int dim = state.model.dim();
   const std::vector<int> axes = state.model.lattice.axes();
-  state.displacement.resize(state.model.dofs.dof_count());
+  state.displacement.resize(state.model.dofs().dof_count());
   for (std::int64_t n = 0; n < state.model.lattice.node_count(); ++n) {
     for (int c = 0; c < dim; ++c)
       state.displacement[n * dim + c] = last.displacement[3 * n + axes[c]];
@@ -31,7 +33,7 @@ inline FinalState final_state(const Scene& scene, const RunResult& result) {
   for (std::int64_t b = 0; b < state.model.lattice.bond_count(); ++b) {
     const double dn = state.model.lattice.bond_direction[b].dot(
         state.model.bond_displacement(state.displacement, b));
-    state.model.contact_active[b] = state.model.contact_capable(b) && dn < 0;
+    if (state.model.contact_capable(b) && dn < 0) editor.set_state(b, PairState::closed);
   }
   return state;
 }

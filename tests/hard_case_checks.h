@@ -53,7 +53,7 @@ inline Balance balance(const FinalState& state) {
   const std::int64_t nodes = lattice.node_count();
   std::vector<std::vector<std::int64_t>> neighbours(nodes);
   for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
-    if (!model.intact[b]) continue;
+    if (!model.intact(b)) continue;
     neighbours[lattice.bonds[b].i].push_back(lattice.bonds[b].j);
     neighbours[lattice.bonds[b].j].push_back(lattice.bonds[b].i);
   }
@@ -68,7 +68,7 @@ inline Balance balance(const FinalState& state) {
     for (std::size_t k = 0; k < queue.size(); ++k) {
       const std::int64_t n = queue[k];
       for (int c = 0; c < dim; ++c)
-        supported[id][c] = supported[id][c] || model.dofs.free_index[n * dim + c] < 0;
+        supported[id][c] = supported[id][c] || model.dofs().free_index[n * dim + c] < 0;
       for (std::int64_t next : neighbours[n]) {
         if (part[next] < 0) {
           part[next] = id;
@@ -78,7 +78,7 @@ inline Balance balance(const FinalState& state) {
     }
   }
   const Vector force = model.internal_force(state.displacement) - model.external_force;
-  const Vector unloaded = model.residual(Vector::Zero(model.dofs.free_count), state.lambda);
+  const Vector unloaded = model.residual(Vector::Zero(model.dofs().free_count), state.lambda);
   const double load = max_abs(unloaded);
   Balance result;
   double worst = 0;
@@ -88,7 +88,7 @@ inline Balance balance(const FinalState& state) {
       const std::int64_t dof = n * dim + c;
       const bool vertical = c == dim - 1;
       if (vertical) result.weight -= model.external_force[dof];
-      if (model.dofs.free_index[dof] < 0) {
+      if (model.dofs().free_index[dof] < 0) {
         if (vertical) result.support_reaction += force[dof];
       } else if (supported[part[n]][c]) {
         worst = std::max(worst, std::abs(force[dof]));

@@ -49,7 +49,7 @@ std::vector<Precut> hexagon_around(const Vec3& centre, double spacing) {
 std::set<std::int64_t> broken_set(const RunResult& result) {
   std::set<std::int64_t> broken;
   for (const BreakEvent& e : result.events) {
-    if (e.mode != 2) broken.insert(e.bond);
+    if (e.mode != BreakMode::precut) broken.insert(e.bond);
   }
   return broken;
 }
@@ -70,7 +70,7 @@ TEST_CASE("Hard: a node isolated by pre-cuts is held, reported, and never NaN", 
   const RunResult result = run_scene(scene, quiet());
   std::int64_t precut_events = 0;
   for (const BreakEvent& e : result.events) {
-    if (e.mode != 2) continue;
+    if (e.mode != BreakMode::precut) continue;
     ++precut_events;
     const Bond& bond = lattice.bonds[e.bond];
     CHECK((bond.i == centre || bond.j == centre));
@@ -234,7 +234,7 @@ TEST_CASE("Hard: a body too weak for its own weight collapses in a cascade at la
   REQUIRE(!result.events.empty());
   for (const BreakEvent& e : result.events) {
     CHECK(e.lambda == 0.0);
-    CHECK(e.mode != 2);
+    CHECK(e.mode != BreakMode::precut);
   }
   CHECK(result.summary.breaks == static_cast<std::int64_t>(result.events.size()));
   REQUIRE(result.snapshots.size() == 1);

@@ -20,7 +20,7 @@ struct Solved {
 Solved solve_scene(const Scene& scene, double lambda) {
   Solved s{build_model(scene), {}};
   EquilibriumSolver solver(s.model, scene.solver);
-  Vector free_u = Vector::Zero(s.model.dofs.free_count);
+  Vector free_u = Vector::Zero(s.model.dofs().free_count);
   solver.solve(lambda, free_u);
   s.displacement = s.model.full_displacement(free_u, lambda);
   return s;

@@ -24,7 +24,9 @@ inline RunResult sample_result() {
   result.positions = {0, 0, 0, 250, 0, 0, 500, 0, 0, 0, 0, 250, 250, 0, 250.125};
   result.bonds = {0, 1, 1, 2, 0, 3, 1, 4};
   result.bond_kind = {0, 0, 1, -1};
-  result.events = {{1e-4, 2, 1.0000001, 0, 0}, {1e-4, 3, 0.99999, 1, 0}, {2.5e-3, 1, 1.5, 2, 7}};
+  result.events = {{1e-4, 2, 1.0000001, BreakMode::tensile, 0},
+                   {1e-4, 3, 0.99999, BreakMode::shear, 0},
+                   {2.5e-3, 1, 1.5, BreakMode::precut, 7}};
   Snapshot first;
   first.lambda = 1e-4;
   first.displacement = {-0.1, 0, 0, 0, 0, 0, 0.1, 0, 0, -0.1, 0, -1e-9, 0, 0, 3e-300};
@@ -38,7 +40,12 @@ inline RunResult sample_result() {
   second.displacement[0] = -2.5;
   second.node_stress[29] = -0.0;
   result.snapshots = {first, second};
-  result.summary = {3, 2.5e-3, 0.75, 42, 5, 37};
+  result.summary.breaks = 3;
+  result.summary.final_lambda = 2.5e-3;
+  result.summary.wall_seconds = 0.75;
+  result.summary.solves = 42;
+  result.summary.factorizations = 5;
+  result.summary.factor_updates = 37;
   return result;
 }
 

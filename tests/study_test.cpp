@@ -39,7 +39,7 @@ RunResult fixed_run(Scene scene, double increment) {
 
 double first_break(const RunResult& run) {
   for (const BreakEvent& e : run.events)
-    if (e.mode != 2) return e.lambda;
+    if (e.mode != BreakMode::precut) return e.lambda;
   FAIL("the run breaks nothing");
   return 0;
 }

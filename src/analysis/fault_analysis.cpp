@@ -84,7 +84,7 @@ Point node_position(const RunResult& result, std::int64_t node) {
 std::vector<std::int8_t> break_modes(const RunResult& result) {
   std::vector<std::int8_t> modes(result.bonds.size() / 2, -1);
   for (const BreakEvent& event : result.events) {
-    if (modes[event.bond] == -1) modes[event.bond] = event.mode;
+    if (modes[event.bond] == -1) modes[event.bond] = static_cast<int>(event.mode);
   }
   return modes;
 }

@@ -48,7 +48,7 @@ FailureIndex FailureEvaluator::bond_index(const Model& model, const Vector& disp
   // The bond law's own normal and shear displacement (the current direction under large
   // kinematics).
   const double length = model.lattice.bond_length[bond];
-  const BondDeformation d = model.law->deformation({model.lattice.bond_direction[bond], length},
+  const BondDeformation d = model.bond_law().deformation({model.lattice.bond_direction[bond], length},
                                                    model.bond_displacement(displacement, bond));
   return criterion_->index(model.bond_young[bond] * d.normal / length,
                            model.bond_shear_modulus[bond] * d.shear.norm() / length, strength);
@@ -62,7 +62,7 @@ void FailureEvaluator::evaluate(const Model& model, const Vector& displacement,
   std::vector<double> node_stress;
   if (uses_tensor_) node_stress = node_stresses(model, displacement);
   for (std::int64_t b = 0; b < bonds; ++b) {
-    if (!model.intact[b]) continue;
+    if (!model.intact(b)) continue;
     const FailureIndex f = bond_index(model, displacement, b, node_stress);
     index[b] = f.value;
     mode[b] = f.mode;
@@ -73,7 +73,7 @@ void FailureEvaluator::evaluate(const Model& model, const Vector& displacement,
 // ranks from the normal ratio and the squared shear ratio, free of square roots.
 double FailureEvaluator::rank(const Model& model, const Vector& displacement, std::int64_t b,
                               const std::vector<double>& node_stress) const {
-  if (uses_tensor_ || !model.law->is_linear()) {
+  if (uses_tensor_ || !model.is_linear()) {
     return bond_index(model, displacement, b, node_stress).value;
   }
   const Vec3& n0 = model.lattice.bond_direction[b];
@@ -106,7 +106,7 @@ std::vector<CriticalBond> FailureEvaluator::critical_group(const Model& model,
   double best = 0;
   std::vector<std::int64_t> candidates;
   for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
-    if (!model.intact[b]) continue;
+    if (!model.intact(b)) continue;
     const double r = rank(model, displacement, b, node_stress);
     if (r <= 0 || r < best * (1 - tolerance)) continue;
     candidates.push_back(b);

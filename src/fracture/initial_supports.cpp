@@ -7,8 +7,9 @@
 namespace latfrac {
 
 std::vector<FragmentEvent> prepare_supports(Model& model, const std::string& source_path) {
+  ModelEditor editor(model);
   for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
-    if (model.contact_capable(b)) model.contact_active[b] = 1;
+    if (model.contact_capable(b)) editor.set_state(b, PairState::closed);
   }
   const FragmentDetector detector(model);
   const auto loose = detector.unsupported_parts(model);
@@ -21,7 +22,7 @@ std::vector<FragmentEvent> prepare_supports(Model& model, const std::string& sou
     }
   }
   for (const auto& part : loose) {
-    hold_part(model, part, Vector::Zero(model.dofs.dof_count()));
+    editor.hold(part.nodes, part.free_components, Vector::Zero(model.dofs().dof_count()));
     events.push_back({0.0, static_cast<std::int64_t>(part.nodes.size())});
   }
   return events;

@@ -117,7 +117,7 @@ void write_events(hid_t file, const std::vector<BreakEvent>& events) {
     lambda.push_back(event.lambda);
     bond.push_back(event.bond);
     failure_index.push_back(event.failure_index);
-    mode.push_back(event.mode);
+    mode.push_back(static_cast<std::int8_t>(event.mode));
     cascade.push_back(event.cascade);
   }
   const Shape shape{events.size()};
@@ -234,7 +234,11 @@ std::vector<BreakEvent> read_events(hid_t file) {
   const auto cascade = hdf5::read_dataset<std::int64_t>(file, "/events/cascade", shape);
   std::vector<BreakEvent> events(shape[0]);
   for (std::size_t i = 0; i < events.size(); ++i) {
-    events[i] = {lambda[i], bond[i], failure_index[i], mode[i], cascade[i]};
+    if (mode[i] < 0 || mode[i] > static_cast<std::int8_t>(BreakMode::precut)) {
+      throw Error("/events/mode[" + std::to_string(i) + "] is " + std::to_string(mode[i]) +
+                  ": a break mode is 0 (tensile), 1 (shear) or 2 (pre-cut)");
+    }
+    events[i] = {lambda[i], bond[i], failure_index[i], static_cast<BreakMode>(mode[i]), cascade[i]};
   }
   return events;
 }

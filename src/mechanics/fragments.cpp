@@ -18,9 +18,7 @@ FragmentDetector::FragmentDetector(const Model& model) : neighbours_(model.latti
 
 namespace {
 
-bool carries(const Model& model, std::int64_t bond) {
-  return model.intact[bond] || (model.contact_capable(bond) && model.contact_active[bond]);
-}
+bool carries(const Model& model, std::int64_t bond) { return connects(model.state(bond)); }
 
 }  // namespace
 
@@ -74,7 +72,7 @@ std::vector<int> FragmentDetector::free_components(const Model& model,
   std::vector<int> free;
   for (int c = 0; c < dim; ++c) {
     const bool held = std::any_of(nodes.begin(), nodes.end(), [&](std::int64_t node) {
-      return model.dofs.free_index[node * dim + c] < 0;
+      return model.dofs().free_index[node * dim + c] < 0;
     });
     if (!held) free.push_back(c);
   }
@@ -105,24 +103,6 @@ std::vector<FragmentDetector::LoosePart> FragmentDetector::unsupported_parts(
     if (!part.free_components.empty()) loose.push_back(std::move(part));
   }
   return loose;
-}
-
-void hold_part(Model& model, const FragmentDetector::LoosePart& part, const Vector& displacement) {
-  DofMap& dofs = model.dofs;
-  const int dim = model.dim();
-  for (std::int64_t node : part.nodes) {
-    for (int c : part.free_components) {
-      const std::int64_t dof = node * dim + c;
-      if (dofs.free_index[dof] < 0) continue;
-      dofs.free_index[dof] = -1;
-      dofs.prescribed_base[dof] = displacement[dof];
-      dofs.prescribed_rate[dof] = 0.0;
-    }
-  }
-  dofs.free_count = 0;
-  for (std::int64_t dof = 0; dof < dofs.dof_count(); ++dof) {
-    if (dofs.free_index[dof] >= 0) dofs.free_index[dof] = dofs.free_count++;
-  }
 }
 
 }  // namespace latfrac

@@ -7,13 +7,12 @@ std::vector<double> node_stresses(const Model& model, const Vector& displacement
   const Lattice& lattice = model.lattice;
   std::vector<Mat3> stress(lattice.node_count(), Mat3::Zero());
   for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
-    if (!model.intact[b]) continue;
+    if (!model.intact(b)) continue;
     const Bond& bond = lattice.bonds[b];
     const Vec3 d0 = lattice.bond_direction[b] * lattice.bond_length[b];
     const Vec3 du = model.node_displacement(displacement, bond.j) -
                     model.node_displacement(displacement, bond.i);
-    const Vec3 t = model.law->tension({lattice.bond_direction[b], lattice.bond_length[b]}, du,
-                                      model.normal_stiffness[b], model.shear_stiffness[b]);
+    const Vec3 t = model.bond_law().tension(model.springs(b), PairState::intact, du);
     const Mat3 dyad = d0 * t.transpose();
     stress[bond.i] += dyad;
     stress[bond.j] += dyad;

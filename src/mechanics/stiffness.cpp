@@ -10,7 +10,7 @@ namespace latfrac {
 // Free dofs are numbered in node order, so this order is sorted.
 StiffnessMatrix::StiffnessMatrix(const Model& model) : dim_(model.dim()) {
   const Lattice& lattice = model.lattice;
-  const DofMap& dofs = model.dofs;
+  const DofMap& dofs = model.dofs();
   const int d = dim_;
   std::vector<std::vector<std::pair<std::int64_t, std::int64_t>>> lower(lattice.node_count());
   for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
@@ -58,16 +58,13 @@ void StiffnessMatrix::assemble(const Model& model, const Vector& displacement) {
       }
   };
   for (std::int64_t bond = 0; bond < lattice.bond_count(); ++bond) {
-    const bool contact = !model.intact[bond] && model.contact_active[bond];
-    if (!model.intact[bond] && !contact) continue;
+    const PairState state = model.state(bond);
+    const InteractionLaw* law = model.law_of(bond);
+    if (state == PairState::open || !law) continue;
     const Bond& pair = lattice.bonds[bond];
-    const Vec3& n0 = lattice.bond_direction[bond];
     const Vec3 du = model.node_displacement(displacement, pair.j) -
                     model.node_displacement(displacement, pair.i);
-    const Mat3 tangent =
-        contact ? Mat3(model.normal_stiffness[bond] * n0 * n0.transpose())
-                : model.law->tangent({n0, lattice.bond_length[bond]}, du,
-                                     model.normal_stiffness[bond], model.shear_stiffness[bond]);
+    const Mat3 tangent = law->tangent(model.springs(bond), state, du);
     add_to_node(pair.i, tangent);
     add_to_node(pair.j, tangent);
     for (int a = 0; a < d; ++a)

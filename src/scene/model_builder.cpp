@@ -31,15 +31,13 @@ const Material& material_at(const Scene& scene, double z) {
 
 // Moduli and strengths per bond: the layer holding the bond's midpoint, times a random
 // factor uniform in [1 - spread, 1 + spread] when the scene names heterogeneity.
-void assign_strengths(const Scene& scene, Model& model) {
+void assign_strengths(const Scene& scene, const FailureCriterion* criterion, Model& model) {
   const Lattice& lattice = model.lattice;
   const std::int64_t bonds = lattice.bond_count();
   model.bond_young.resize(bonds);
   model.bond_shear_modulus.resize(bonds);
   model.bond_sigma0.assign(bonds, 0.0);
   model.bond_tau0.assign(bonds, 0.0);
-  std::optional<CriterionParameters> criterion;
-  if (scene.strength) criterion = resolve_criterion(*scene.strength, lattice.dim);
   std::mt19937_64 generator(scene.heterogeneity ? scene.heterogeneity->seed : 0);
   const double spread = scene.heterogeneity ? scene.heterogeneity->spread : 0.0;
   std::uniform_real_distribution<double> factor(1 - spread, 1 + spread);
@@ -52,11 +50,12 @@ void assign_strengths(const Scene& scene, Model& model) {
     model.bond_shear_modulus[b] = material.young / (2 * (1 + material.poisson));
     if (!criterion) continue;
     const double scale = spread > 0 ? factor(generator) : 1.0;
-    const double sigma0 = layer && layer->sigma0 ? *layer->sigma0 : criterion->sigma0;
-    double tau0 = layer && layer->tau0 ? *layer->tau0 : criterion->tau0;
+    const CriterionParameters& resolved = criterion->parameters();
+    const double sigma0 = layer && layer->sigma0 ? *layer->sigma0 : resolved.sigma0;
+    double tau0 = layer && layer->tau0 ? *layer->tau0 : resolved.tau0;
     // A layer that sets its own sigma0 but not tau0 scales a derived tau0 with it.
     if (layer && layer->sigma0 && !layer->tau0 && !scene.strength->tau0)
-      tau0 *= sigma0 / criterion->sigma0;
+      tau0 *= sigma0 / resolved.sigma0;
     model.bond_sigma0[b] = scale * sigma0;
     model.bond_tau0[b] = scale * tau0;
   }
@@ -65,6 +64,11 @@ void assign_strengths(const Scene& scene, Model& model) {
 }  // namespace
 
 Model build_model(const Scene& scene) {
+  if (!scene.strength) return build_model(scene, nullptr);
+  return build_model(scene, make_criterion(*scene.strength, scene.lattice.dim).get());
+}
+
+Model build_model(const Scene& scene, const FailureCriterion* criterion) {
   validate_material(scene.material);
   for (const Layer& layer : scene.layers) validate_material(layer.material, "layer");
   Model model;
@@ -75,7 +79,8 @@ Model build_model(const Scene& scene) {
   const std::int64_t bonds = lattice.bond_count();
   model.normal_stiffness.resize(bonds);
   model.shear_stiffness.resize(bonds);
-  model.intact.assign(bonds, 1);
+  ModelEditor editor(model);
+  editor.reset_states();
   for (std::int64_t b = 0; b < bonds; ++b) {
     const Bond& bond = lattice.bonds[b];
     const double mid_z = 0.5 * (lattice.positions[bond.i].z() + lattice.positions[bond.j].z());
@@ -85,17 +90,15 @@ Model build_model(const Scene& scene) {
     model.shear_stiffness[b] = scale * k.shear;
   }
 
-  assign_strengths(scene, model);
+  assign_strengths(scene, criterion, model);
   model.precut.assign(bonds, 0);
   for (std::int64_t b : bonds_crossing_precuts(lattice, scene.precuts)) {
     model.precut[b] = 1;
-    model.intact[b] = 0;
+    editor.set_state(b, PairState::open);
   }
-  model.contact = scene.contact.has_value();
-  model.contact_active.assign(bonds, 0);
 
-  model.dofs = build_dof_map(lattice, scene.faces);
-  model.external_force = Vector::Zero(model.dofs.dof_count());
+  editor.set_dofs(build_dof_map(lattice, scene.faces));
+  model.external_force = Vector::Zero(model.dofs().dof_count());
   model.node_poisson.resize(lattice.node_count());
   for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
     const Material& material = material_at(scene, lattice.positions[n].z());
@@ -106,11 +109,14 @@ Model build_model(const Scene& scene) {
           -material.density * scene.gravity->g * lattice.node_volume;
     }
   }
+  std::unique_ptr<BondLaw> bond_law;
   if (scene.large_kinematics) {
-    model.law = std::make_unique<LargeKinematics>();
+    bond_law = std::make_unique<LargeKinematics>(dim);
   } else {
-    model.law = std::make_unique<SmallKinematics>();
+    bond_law = std::make_unique<SmallKinematics>(dim);
   }
+  editor.set_laws(std::move(bond_law),
+                  scene.contact ? std::make_unique<ContactLaw>(lattice.spacing) : nullptr);
   return model;
 }
 

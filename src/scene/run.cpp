@@ -8,13 +8,13 @@
 #include <ctime>
 #include <sstream>
 
-#include "latfrac/fracture/continuation.h"
+#include "latfrac/fracture/fracture_run.h"
 #include "latfrac/scene/model_builder.h"
 #include "latfrac/solvers/equilibrium.h"
 #include "latfrac/base/error.h"
 #include "latfrac/fracture/initial_supports.h"
 #include "latfrac/base/progress.h"
-#include "latfrac/fracture/snapshot.h"
+#include "latfrac/fracture/snapshots.h"
 
 namespace latfrac {
 
@@ -36,6 +36,26 @@ Provenance provenance_of(const Scene& scene, const RunOptions& options) {
   p.created = utc_timestamp();
   p.seed = scene.heterogeneity ? scene.heterogeneity->seed : 0;
   return p;
+}
+
+// A linear elastic scene follows an affine path: one factorization and one two-column
+// solve give every lambda; KINSOL then confirms equilibrium at each snapshot. A nonlinear
+// one (large kinematics) is solved by KINSOL snapshot after snapshot, each from the one
+// before.
+void run_elastic(const Scene& scene, const Model& model, EquilibriumSolver& solver,
+                 ProgressLine& progress, RunResult& result) {
+  const bool linear = model.is_linear();
+  const AffinePath path = linear ? solver.affine_path() : AffinePath{};
+  std::vector<double> lambdas = scene.output.snapshots;
+  if (lambdas.empty()) lambdas.push_back(scene.loading.total);
+  Vector free_displacement = Vector::Zero(model.dofs().free_count);
+  for (double lambda : lambdas) {
+    if (linear) free_displacement = path.at(lambda);
+    solver.solve(lambda, free_displacement);
+    result.snapshots.push_back(
+        make_snapshot(model, model.full_displacement(free_displacement, lambda), lambda, nullptr));
+    progress.update(lambda, 0);
+  }
 }
 
 }  // namespace
@@ -73,51 +93,30 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   result.scene = {scene.name, scene.lattice.dim, scene.lattice.spacing, "",
                   scene.output.exaggeration};
 
-  Model model = build_model(scene);
+  // One criterion object, resolved once, gives the model its strengths and the run its f.
+  const std::shared_ptr<const FailureCriterion> criterion =
+      scene.strength ? make_criterion(*scene.strength, scene.lattice.dim) : nullptr;
+  Model model = build_model(scene, criterion.get());
   record_lattice(model, result);
   result.fragments = prepare_supports(model, scene.source_path);
   EquilibriumSolver solver(model, scene.solver);
   ProgressLine progress(options.progress);
 
-  std::int64_t relaxation_solves = 0;
-  if (scene.strength) {
+  if (criterion) {
     result.scene.criterion = to_string(scene.strength->criterion);
-    FractureContinuation continuation(model, *scene.strength, schedule_of(scene), scene.solver,
-                                      solver, progress);
-    if (scene.stepping.method == SteppingMethod::event) {
-      continuation.run_event_driven(result);
-    } else {
-      continuation.run_fixed_step(result);
-    }
-    result.summary.breaks = continuation.breaks();
-    result.summary.contact_cycles = continuation.chattering_resolved();
-    result.summary.relaxation_sweeps = continuation.relaxation_sweeps();
-    relaxation_solves = continuation.relaxation_solves();
-    result.summary.relaxation_unconverged = continuation.relaxation_unconverged();
+    FractureRun fracture(model, criterion, scene.strength->bond_stress, schedule_of(scene),
+                         scene.solver, solver, progress, result);
+    fracture.run();
+    static_cast<RunCounters&>(result.summary) = fracture.counters();
   } else {
-    // A linear elastic scene follows an affine path: one factorization and one
-    // two-column solve give every lambda; KINSOL then confirms equilibrium at each snapshot.
-    // A nonlinear one (large kinematics) is solved by KINSOL snapshot after snapshot, each
-    // from the one before.
-    const bool linear = model.law->is_linear();
-    const AffinePath path = linear ? solver.affine_path() : AffinePath{};
-    std::vector<double> lambdas = scene.output.snapshots;
-    if (lambdas.empty()) lambdas.push_back(scene.loading.total);
-    Vector free_displacement = Vector::Zero(model.dofs.free_count);
-    for (double lambda : lambdas) {
-      if (linear) free_displacement = path.at(lambda);
-      solver.solve(lambda, free_displacement);
-      result.snapshots.push_back(make_snapshot(
-          model, model.full_displacement(free_displacement, lambda), lambda, nullptr));
-      progress.update(lambda, 0);
-    }
+    run_elastic(scene, model, solver, progress, result);
+    result.summary.solves = solver.counters().solves;
+    result.summary.factorizations = solver.counters().factorizations;
+    result.summary.factor_updates = solver.counters().factor_updates;
   }
   progress.finish();
 
   result.summary.final_lambda = scene.loading.total;
-  result.summary.solves = solver.counters().solves + relaxation_solves;
-  result.summary.factorizations = solver.counters().factorizations;
-  result.summary.factor_updates = solver.counters().factor_updates;
   result.summary.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

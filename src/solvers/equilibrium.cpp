@@ -13,19 +13,11 @@ namespace latfrac {
 
 void EquilibriumSolver::update_loads() {
   if (loads_current_) return;
-  const std::int64_t n = model_.dofs.free_count;
-  const Vector zero = Vector::Zero(n);
-  auto free_part = [&](const Vector& full) {
-    Vector part(n);
-    for (std::int64_t dof = 0; dof < model_.dofs.dof_count(); ++dof) {
-      if (model_.dofs.free_index[dof] >= 0) part[model_.dofs.free_index[dof]] = full[dof];
-    }
-    return part;
-  };
+  const Vector zero = Vector::Zero(model_.dofs().free_count);
   const Vector at0 = model_.internal_force(model_.full_displacement(zero, 0.0), boundary_bonds_);
   const Vector at1 = model_.internal_force(model_.full_displacement(zero, 1.0), boundary_bonds_);
-  load0_ = free_part(model_.external_force - at0);
-  load1_ = free_part(at0 - at1);
+  load0_ = model_.free_part(model_.external_force - at0);
+  load1_ = model_.free_part(at0 - at1);
   loads_current_ = true;
 }
 
@@ -35,7 +27,7 @@ double EquilibriumSolver::load_scale(double lambda) {
 }
 
 void EquilibriumSolver::refactorize(const Vector& free_displacement, double lambda) {
-  if (model_.dofs.free_count == 0) {
+  if (model_.dofs().free_count == 0) {
     factor_current_ = true;
     return;
   }
@@ -47,9 +39,8 @@ void EquilibriumSolver::refactorize(const Vector& free_displacement, double lamb
   updates_since_factorization_ = 0;
 }
 
-void EquilibriumSolver::update_factor(
-    std::int64_t bond, const std::vector<std::pair<double, Vec3>>& weighted_directions,
-    bool downdate) {
+void EquilibriumSolver::update_factor(std::int64_t bond, const std::vector<RankOneTerm>& terms,
+                                      bool downdate) {
   loads_current_ = false;
   if (!factor_current_) return;  // the next factorization assembles the new stiffness
   if (updates_since_factorization_ >= options_.refactor_every) {
@@ -58,7 +49,7 @@ void EquilibriumSolver::update_factor(
     return;
   }
   std::vector<CholeskyFactor::Column> columns;
-  for (const auto& [weight, direction] : weighted_directions) {
+  for (const auto& [weight, direction] : terms) {
     if (weight <= 0) continue;
     CholeskyFactor::Column column;
     append_on_bond(bond, std::sqrt(weight) * direction, column);
@@ -73,7 +64,7 @@ void EquilibriumSolver::update_factor(
   }
   ++counters_.factor_updates;
   ++updates_since_factorization_;
-  if (last_solution_valid_) record_force_change(bond, weighted_directions, downdate);
+  if (last_solution_valid_) record_force_change(bond, terms, downdate);
 }
 
 void EquilibriumSolver::remember_solution(const Vector& free_displacement, double lambda) {
@@ -87,24 +78,23 @@ void EquilibriumSolver::remember_solution(const Vector& free_displacement, doubl
 // f = sum_k w_k (d_k . (u_j - u_i)) d_k on node j (and -f on node i) in the last solution.
 // Removing it leaves the residual R = internal - external short by f, so the correction
 // solves K du = f at j, -f at i; adding a spring (a contact closing) is the opposite.
-void EquilibriumSolver::record_force_change(
-    std::int64_t bond, const std::vector<std::pair<double, Vec3>>& weighted_directions,
-    bool downdate) {
+void EquilibriumSolver::record_force_change(std::int64_t bond,
+                                            const std::vector<RankOneTerm>& terms,
+                                            bool downdate) {
   const Bond& pair = model_.lattice.bonds[bond];
   const std::vector<int> axes = model_.lattice.axes();
   const int dim = model_.dim();
   auto displacement = [&](std::int64_t node, int c) {
     const std::int64_t dof = node * dim + c;
-    const std::int64_t f = model_.dofs.free_index[dof];
+    const std::int64_t f = model_.dofs().free_index[dof];
     return f >= 0 ? last_solution_[f]
-                  : model_.dofs.prescribed_base[dof] + last_lambda_ * model_.dofs.prescribed_rate[dof];
+                  : model_.dofs().prescribed_base[dof] + last_lambda_ * model_.dofs().prescribed_rate[dof];
   };
   Vec3 stretch = Vec3::Zero();  // u_j - u_i on the lattice's axes
   for (int c = 0; c < dim; ++c)
     stretch[axes[c]] = displacement(pair.j, c) - displacement(pair.i, c);
   Vec3 force = Vec3::Zero();
-  for (const auto& [weight, direction] : weighted_directions)
-    force += weight * direction.dot(stretch) * direction;
+  for (const auto& [weight, direction] : terms) force += weight * direction.dot(stretch) * direction;
   append_on_bond(bond, downdate ? force : Vec3(-force), pending_forces_);
 }
 
@@ -116,32 +106,34 @@ void EquilibriumSolver::append_on_bond(std::int64_t bond, const Vec3& v,
   for (int c = 0; c < dim; ++c) {
     const double value = v[axes[c]];
     if (value == 0) continue;
-    const std::int64_t fj = model_.dofs.free_index[pair.j * dim + c];
-    const std::int64_t fi = model_.dofs.free_index[pair.i * dim + c];
+    const std::int64_t fj = model_.dofs().free_index[pair.j * dim + c];
+    const std::int64_t fi = model_.dofs().free_index[pair.i * dim + c];
     if (fj >= 0) column.push_back({fj, value});
     if (fi >= 0) column.push_back({fi, -value});
   }
 }
 
-// The bond's stiffness kn n0 n0' + ks (I - n0 n0') as weighted orthonormal directions.
-void EquilibriumSolver::remove_bond(std::int64_t bond) {
-  const Vec3& n0 = model_.lattice.bond_direction[bond];
-  const double kn = model_.normal_stiffness[bond], ks = model_.shear_stiffness[bond];
-  std::vector<std::pair<double, Vec3>> directions{{kn, n0}};
-  if (model_.dim() == 2) {
-    directions.push_back({ks, Vec3(-n0.z(), 0, n0.x())});
-  } else {
-    const Vec3 helper = std::abs(n0.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-    const Vec3 first = n0.cross(helper).normalized();
-    directions.push_back({ks, first});
-    directions.push_back({ks, n0.cross(first)});
-  }
-  update_factor(bond, directions, /*downdate=*/true);
+// The old state's terms come out first, then the new state's go in: two updates, each
+// counted (a break into a closed contact is a downdate of the bond and an update of the
+// contact spring).
+void EquilibriumSolver::set_pair_state(std::int64_t bond, PairState state) {
+  if (model_.state(bond) == state) return;
+  const PairSprings springs = model_.springs(bond);
+  const InteractionLaw* old_law = model_.law_of(bond);
+  const std::vector<RankOneTerm> removed =
+      old_law ? old_law->stiffness_terms(springs, model_.state(bond)) : std::vector<RankOneTerm>{};
+  editor_.set_state(bond, state);
+  const InteractionLaw* new_law = model_.law_of(bond);
+  const std::vector<RankOneTerm> added =
+      new_law ? new_law->stiffness_terms(springs, state) : std::vector<RankOneTerm>{};
+  if (!removed.empty()) update_factor(bond, removed, /*downdate=*/true);
+  if (!added.empty()) update_factor(bond, added, /*downdate=*/false);
 }
 
-void EquilibriumSolver::set_contact(std::int64_t bond, bool active) {
-  update_factor(bond, {{model_.normal_stiffness[bond], model_.lattice.bond_direction[bond]}},
-                /*downdate=*/!active);
+void EquilibriumSolver::hold(const std::vector<Hold>& holds, const Vector& displacement) {
+  if (holds.empty()) return;
+  for (const Hold& h : holds) editor_.hold(h.nodes, h.components, displacement);
+  supports_changed();
 }
 
 // Without load (no gravity at lambda = 0) the solution is 0 and any finite result passes;
@@ -174,7 +166,7 @@ AffinePath EquilibriumSolver::checked_affine_path(double lambda) {
 }
 
 Vector EquilibriumSolver::checked_solve(double lambda) {
-  const std::int64_t n = model_.dofs.free_count;
+  const std::int64_t n = model_.dofs().free_count;
   if (last_solution_valid_ && factor_current_ && lambda == last_lambda_ && n > 0) {
     Vector correction(n);
     if (factor_.solve_sparse(pending_forces_, correction.data())) {
@@ -208,7 +200,7 @@ Vector EquilibriumSolver::checked_solve(double lambda) {
 void EquilibriumSolver::supports_changed() {
   last_solution_valid_ = false;  // the free dofs are others now
   stiffness_ = StiffnessMatrix(model_);
-  if (model_.dofs.free_count > 0) factor_.analyze(stiffness_);
+  if (model_.dofs().free_count > 0) factor_.analyze(stiffness_);
   reset_kinsol();
   factor_current_ = false;
   find_boundary_bonds();
@@ -220,7 +212,7 @@ void EquilibriumSolver::find_boundary_bonds() {
   const int dim = model_.dim();
   auto held = [&](std::int64_t node) {
     for (int c = 0; c < dim; ++c) {
-      if (model_.dofs.free_index[node * dim + c] < 0) return true;
+      if (model_.dofs().free_index[node * dim + c] < 0) return true;
     }
     return false;
   };
@@ -231,8 +223,8 @@ void EquilibriumSolver::find_boundary_bonds() {
 }
 
 AffinePath EquilibriumSolver::affine_path() {
-  if (!model_.law->is_linear()) throw Error("affine_path: the bond law is not linear");
-  const std::int64_t n = model_.dofs.free_count;
+  if (!model_.is_linear()) throw Error("affine_path: the bond law is not linear");
+  const std::int64_t n = model_.dofs().free_count;
   if (!factor_current_) refactorize(Vector::Zero(n), 0.0);
   update_loads();
   Eigen::MatrixXd rhs(n, 2);

@@ -131,7 +131,7 @@ struct EquilibriumSolver::Kinsol {
 
 // The constructor and destructor live here, where Kinsol is a complete type.
 EquilibriumSolver::EquilibriumSolver(Model& model, const SolverOptions& options)
-    : model_(model), options_(options), stiffness_(model), factor_(options.ordering) {
+    : model_(model), editor_(model), options_(options), stiffness_(model), factor_(options.ordering) {
   reset_kinsol();
   find_boundary_bonds();
 }
@@ -141,15 +141,15 @@ EquilibriumSolver::~EquilibriumSolver() = default;
 // KINSOL's memory is sized for the free dofs: none without free dofs.
 void EquilibriumSolver::reset_kinsol() {
   kinsol_.reset();
-  if (model_.dofs.free_count > 0)
-    kinsol_ = std::make_unique<Kinsol>(this, static_cast<sunindextype>(model_.dofs.free_count));
+  if (model_.dofs().free_count > 0)
+    kinsol_ = std::make_unique<Kinsol>(this, static_cast<sunindextype>(model_.dofs().free_count));
 }
 
 EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacement) {
   EquilibriumReport report;
   const double load = load_scale(lambda);
-  if (load == 0 || model_.dofs.free_count == 0) {
-    free_displacement.setZero(model_.dofs.free_count);
+  if (load == 0 || model_.dofs().free_count == 0) {
+    free_displacement.setZero(model_.dofs().free_count);
     return report;
   }
   Kinsol& k = *kinsol_;
@@ -162,13 +162,13 @@ EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacem
   check_flag(KINSetFuncNormTol(k.memory, options_.tolerance), "KINSetFuncNormTol");
   check_flag(KINSetNumMaxIters(k.memory, options_.max_iterations), "KINSetNumMaxIters");
   // A linear problem whose factor is current needs no new factorization.
-  const bool reuse = model_.law->is_linear() && factor_current_;
+  const bool reuse = model_.is_linear() && factor_current_;
   check_flag(KINSetNoInitSetup(k.memory, reuse ? SUNTRUE : SUNFALSE), "KINSetNoInitSetup");
   // Exact Newton (a fresh tangent every iteration) on a nonlinear problem; a linear one
   // keeps its factor. KINSOL counts iterations across calls, so "never" must be large.
-  const long setup_every = model_.law->is_linear() ? 1000000000L : 1L;
+  const long setup_every = model_.is_linear() ? 1000000000L : 1L;
   check_flag(KINSetMaxSetupCalls(k.memory, setup_every), "KINSetMaxSetupCalls");
-  const int strategy = model_.law->is_linear() ? KIN_NONE : KIN_LINESEARCH;
+  const int strategy = model_.is_linear() ? KIN_NONE : KIN_LINESEARCH;
   const int flag = KINSol(k.memory, k.unknowns, strategy, k.unit_scale, k.residual_scale);
   if (flag < 0) {
     std::string message = std::string("KINSol failed (") + flag_name(flag) + ")";

@@ -32,47 +32,43 @@ double path_tolerance(const SolverOptions& options) {
 
 // The full vector with `free` on the free dofs and zero on the prescribed ones.
 Vector embed_free(const Model& model, const Vector& free) {
-  Vector full = Vector::Zero(model.dofs.dof_count());
-  for (std::int64_t dof = 0; dof < model.dofs.dof_count(); ++dof) {
-    if (model.dofs.free_index[dof] >= 0) full[dof] = free[model.dofs.free_index[dof]];
+  Vector full = Vector::Zero(model.dofs().dof_count());
+  for (std::int64_t dof = 0; dof < model.dofs().dof_count(); ++dof) {
+    if (model.dofs().free_index[dof] >= 0) full[dof] = free[model.dofs().free_index[dof]];
   }
   return full;
 }
 
 // The full vector with the prescribed rates on the prescribed dofs, zero elsewhere.
 Vector prescribed_rates(const Model& model) {
-  Vector full = Vector::Zero(model.dofs.dof_count());
-  for (std::int64_t dof = 0; dof < model.dofs.dof_count(); ++dof) {
-    if (model.dofs.free_index[dof] < 0) full[dof] = model.dofs.prescribed_rate[dof];
+  Vector full = Vector::Zero(model.dofs().dof_count());
+  for (std::int64_t dof = 0; dof < model.dofs().dof_count(); ++dof) {
+    if (model.dofs().free_index[dof] < 0) full[dof] = model.dofs().prescribed_rate[dof];
   }
   return full;
 }
 
 // The derivative of the internal force on the free dofs at the full displacement u in the
 // direction v (full vector): sum over bonds of +-T(du) (v_j - v_i), with the law's exact
-// tangent T and the active contact springs, as Model::add_bond_force has them.
+// jacobian of each pair's law in its state, as Model::add_bond_force has them.
 Vector directional_derivative(const Model& model, const Vector& displacement,
                               const Vector& direction) {
-  Vector result = Vector::Zero(model.dofs.free_count);
+  Vector result = Vector::Zero(model.dofs().free_count);
   const int d = model.dim();
   const Lattice& lattice = model.lattice;
   for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
-    const bool in_contact = model.contact_capable(b) && model.contact_active[b];
-    if (!model.intact[b] && !in_contact) continue;
+    const InteractionLaw* law = model.law_of(b);
+    if (model.state(b) == PairState::open || !law) continue;
     const Vec3 relative_direction = model.bond_displacement(direction, b);
     if (relative_direction.isZero(0.0)) continue;
-    const Vec3& n0 = lattice.bond_direction[b];
     const Mat3 tangent =
-        model.intact[b] ? model.law->jacobian({n0, lattice.bond_length[b]},
-                                              model.bond_displacement(displacement, b),
-                                              model.normal_stiffness[b], model.shear_stiffness[b])
-                        : Mat3(model.normal_stiffness[b] * n0 * n0.transpose());
+        law->jacobian(model.springs(b), model.state(b), model.bond_displacement(displacement, b));
     const Vec3 change = tangent * relative_direction;
     const Bond& bond = lattice.bonds[b];
     for (int c = 0; c < d; ++c) {
       const double component = change[d == 2 ? 2 * c : c];
-      const std::int64_t fj = model.dofs.free_index[bond.j * d + c];
-      const std::int64_t fi = model.dofs.free_index[bond.i * d + c];
+      const std::int64_t fj = model.dofs().free_index[bond.j * d + c];
+      const std::int64_t fi = model.dofs().free_index[bond.i * d + c];
       if (fj >= 0) result[fj] += component;
       if (fi >= 0) result[fi] -= component;
     }
@@ -175,14 +171,14 @@ CriticalBond NonlinearPath::critical(const Vector& free_displacement, double lam
 Vector NonlinearPath::path_derivative(const Vector& free_displacement, double lambda) {
   ++statistics_.rhs_evaluations;
   const Vector displacement = model_.full_displacement(free_displacement, lambda);
-  const bool linear = model_.law->is_linear();
+  const bool linear = model_.is_linear();
   if (!linear || !factor_is_tangent_) {
     solver_.stiffness().assemble(model_, displacement);
     solver_.factor().factorize(solver_.stiffness());
     ++statistics_.factorizations;
     factor_is_tangent_ = linear;
   }
-  const std::int64_t n = model_.dofs.free_count;
+  const std::int64_t n = model_.dofs().free_count;
   const Vector load_rate = -directional_derivative(model_, displacement, prescribed_rates(model_));
   Vector rate = load_rate;
   if (n == 0) return rate;
@@ -256,7 +252,7 @@ PathEvent NonlinearPath::advance(double from, double to, Vector& free_displaceme
   factor_is_tangent_ = false;  // the intact bonds may have changed since the last call
   const CriticalBond start = critical(free_displacement, from);
   if (start.bond >= 0 && start.index >= 1) return {from, start.bond};
-  if (to == from || model_.dofs.free_count == 0) {
+  if (to == from || model_.dofs().free_count == 0) {
     solver_.solve(to, free_displacement);
     return {to, -1};
   }

@@ -2,7 +2,7 @@
 //
 // Two implementations of the same sweep. A linear bond law's tension is its tangent
 // times the relative displacement, so LinearNodes caches each active bond's tangent
-// (from model.law) and each node's omega B^-1 once per solve, and a node visit is a few
+// (from its interaction law) and each node's omega B^-1 once per solve, and a node visit is a few
 // small matrix-vector products. Any other law goes through GeneralNodes, which asks the
 // law for every bond's tension and tangent at each visit.
 #include "latfrac/solvers/relaxation.h"
@@ -22,13 +22,9 @@ namespace {
 // The Vec3 axis of dof component c: x, z in 2-D; x, y, z in 3-D.
 int axis_of(int dim, int c) { return dim == 2 ? 2 * c : c; }
 
-// What bond b contributes: nothing, its spring (through the law), or a contact spring.
-enum class BondState : std::uint8_t { inactive, spring, contact };
-
-BondState state_of(const Model& model, std::int64_t b) {
-  if (model.intact[b]) return BondState::spring;
-  if (model.contact_capable(b) && model.contact_active[b]) return BondState::contact;
-  return BondState::inactive;
+// Does bond b contribute (a law acts on it in a state that is not open)?
+bool acts(const Model& model, std::int64_t b) {
+  return model.state(b) != PairState::open && model.law_of(b) != nullptr;
 }
 
 // Per node, bit a set when Vec3 axis a is a free degree of freedom.
@@ -37,25 +33,18 @@ std::vector<std::uint8_t> free_axes_of(const Model& model) {
   std::vector<std::uint8_t> free_axes(model.lattice.node_count(), 0);
   for (std::int64_t n = 0; n < model.lattice.node_count(); ++n) {
     for (int c = 0; c < dim; ++c) {
-      if (model.dofs.free_index[n * dim + c] >= 0) free_axes[n] |= 1u << axis_of(dim, c);
+      if (model.dofs().free_index[n * dim + c] >= 0) free_axes[n] |= 1u << axis_of(dim, c);
     }
   }
   return free_axes;
 }
 
 // Bond b's tension (the internal force on its end j) and, when asked, its tangent.
-Vec3 bond_tension(const Model& model, BondState state, std::int64_t b, const Vec3& du,
-                  Mat3* tangent) {
-  const Vec3& n0 = model.lattice.bond_direction[b];
-  const double kn = model.normal_stiffness[b];
-  if (state == BondState::contact) {
-    if (tangent) *tangent = kn * n0 * n0.transpose();
-    return kn * n0.dot(du) * n0;
-  }
-  const BondReference reference{n0, model.lattice.bond_length[b]};
-  const double ks = model.shear_stiffness[b];
-  if (tangent) *tangent = model.law->tangent(reference, du, kn, ks);
-  return model.law->tension(reference, du, kn, ks);
+Vec3 bond_tension(const Model& model, std::int64_t b, const Vec3& du, Mat3* tangent) {
+  const InteractionLaw& law = *model.law_of(b);
+  const PairSprings springs = model.springs(b);
+  if (tangent) *tangent = law.tangent(springs, model.state(b), du);
+  return law.tension(springs, model.state(b), du);
 }
 
 // A node's move per unit out-of-balance force: omega B^-1 on the free axes, zero rows and
@@ -116,11 +105,10 @@ class LinearNodes {
       Mat3 block = Mat3::Zero();
       for (std::int64_t k = first_bond[n]; k < first_bond[n + 1]; ++k) {
         const std::int64_t b = bond_of_node[k];
-        const BondState state = state_of(model, b);
-        if (state == BondState::inactive) continue;
+        if (!acts(model, b)) continue;
         const Bond& bond = model.lattice.bonds[b];
         Mat3 tangent;
-        bond_tension(model, state, b, model.bond_displacement(displacement, b), &tangent);
+        bond_tension(model, b, model.bond_displacement(displacement, b), &tangent);
         block += tangent;
         neighbour_.push_back(bond.i == n ? bond.j : bond.i);
         stiffness_.push_back(restrict(tangent));
@@ -187,8 +175,8 @@ class GeneralNodes {
         bond_of_node_(bond_of_node),
         omega_(omega),
         free_axes_(free_axes_of(model)) {
-    state_.resize(model.lattice.bond_count());
-    for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) state_[b] = state_of(model, b);
+    acts_.resize(model.lattice.bond_count());
+    for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) acts_[b] = acts(model, b);
   }
 
   void sweep(Vector& u) const {
@@ -224,8 +212,8 @@ class GeneralNodes {
     Mat3 tangent;
     for (std::int64_t k = first_bond_[n]; k < first_bond_[n + 1]; ++k) {
       const std::int64_t b = bond_of_node_[k];
-      if (state_[b] == BondState::inactive) continue;
-      const Vec3 t = bond_tension(model_, state_[b], b, model_.bond_displacement(u, b),
+      if (!acts_[b]) continue;
+      const Vec3 t = bond_tension(model_, b, model_.bond_displacement(u, b),
                                   block ? &tangent : nullptr);
       if (block) *block += tangent;
       // The internal force is +t on end j and -t on end i.
@@ -243,7 +231,7 @@ class GeneralNodes {
   const std::vector<std::int64_t>& bond_of_node_;
   double omega_;
   std::vector<std::uint8_t> free_axes_;
-  std::vector<BondState> state_;
+  std::vector<std::uint8_t> acts_;  // per bond: acts() when the solve started
 };
 
 // Sweeps until the relative residual meets the tolerance or the sweeps run out.
@@ -307,7 +295,7 @@ RelaxationReport RelaxationSolver::solve(const Model& model, double lambda,
     throw Error(
         "RelaxationSolver::solve: the model's lattice is not the one the solver was built for");
   }
-  const std::int64_t free_count = model.dofs.free_count;
+  const std::int64_t free_count = model.dofs().free_count;
   assert(free_displacement.size() == free_count);
   const double load = max_abs(model.residual(Vector::Zero(free_count), lambda));
   if (free_count == 0 || load == 0) {
@@ -319,10 +307,10 @@ RelaxationReport RelaxationSolver::solve(const Model& model, double lambda,
 
   Vector u = model.full_displacement(free_displacement, lambda);
   RelaxationReport report;
-  if (model.law->is_linear() && model.dim() == 2) {
+  if (model.is_linear() && model.dim() == 2) {
     const LinearNodes<2> nodes(model, first_bond_, bond_of_node_, u, omega_);
     report = iterate(nodes, u, load, tolerance_, max_sweeps_, check_interval);
-  } else if (model.law->is_linear()) {
+  } else if (model.is_linear()) {
     const LinearNodes<3> nodes(model, first_bond_, bond_of_node_, u, omega_);
     report = iterate(nodes, u, load, tolerance_, max_sweeps_, check_interval);
   } else {
@@ -330,8 +318,8 @@ RelaxationReport RelaxationSolver::solve(const Model& model, double lambda,
     report = iterate(nodes, u, load, tolerance_, max_sweeps_, check_interval);
   }
 
-  for (std::int64_t dof = 0; dof < model.dofs.dof_count(); ++dof) {
-    const std::int64_t f = model.dofs.free_index[dof];
+  for (std::int64_t dof = 0; dof < model.dofs().dof_count(); ++dof) {
+    const std::int64_t f = model.dofs().free_index[dof];
     if (f >= 0) free_displacement[f] = u[dof];
   }
   return report;

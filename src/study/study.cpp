@@ -75,7 +75,7 @@ std::optional<double> main_fault_angle(const RunResult& run) {
 
 void fill_from_run(StudyRow& row, const RunResult& run, const ReferenceFacts& reference) {
   row.breaks = std::count_if(run.events.begin(), run.events.end(),
-                             [](const BreakEvent& e) { return e.mode != 2; });
+                             [](const BreakEvent& e) { return e.mode != BreakMode::precut; });
   row.first_break_lambda = first_break_lambda(run);
   // A reference that first breaks at lambda = 0 (under gravity alone) has no relative
   // error to measure against: the column stays blank.
@@ -180,7 +180,7 @@ std::vector<std::int64_t> final_broken_set(const RunResult& result) {
   if (result.snapshots.empty()) return broken;
   std::set<std::int64_t> precut;
   for (const BreakEvent& e : result.events)
-    if (e.mode == 2) precut.insert(e.bond);
+    if (e.mode == BreakMode::precut) precut.insert(e.bond);
   const std::vector<std::uint8_t>& intact = result.snapshots.back().bond_intact;
   for (std::size_t bond = 0; bond < intact.size(); ++bond)
     if (!intact[bond] && !precut.count(static_cast<std::int64_t>(bond))) broken.push_back(bond);
@@ -189,7 +189,7 @@ std::vector<std::int64_t> final_broken_set(const RunResult& result) {
 
 std::optional<double> first_break_lambda(const RunResult& result) {
   for (const BreakEvent& e : result.events)
-    if (e.mode != 2) return e.lambda;
+    if (e.mode != BreakMode::precut) return e.lambda;
   return std::nullopt;
 }
 

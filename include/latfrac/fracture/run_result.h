@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "latfrac/criteria/stress.h"
+
 namespace latfrac {
 
 struct Provenance {
@@ -34,7 +36,7 @@ struct BreakEvent {
   double lambda = 0;
   std::int64_t bond = 0;
   double failure_index = 0;
-  std::int8_t mode = 0;  // 0 tensile, 1 shear, 2 pre-cut
+  BreakMode mode = BreakMode::tensile;  // in the file: 0 tensile, 1 shear, 2 pre-cut
   std::int64_t cascade = 0;
 };
 
@@ -52,16 +54,21 @@ struct Snapshot {
   std::vector<double> node_stress;         // N x 6, Pa
 };
 
-struct RunSummary {
+// What a run counted: the fracture run and the solvers fill it, the result file's
+// /summary holds it.
+struct RunCounters {
   std::int64_t breaks = 0;
-  double final_lambda = 0;
-  double wall_seconds = 0;
-  std::int64_t solves = 0;
-  std::int64_t factorizations = 0;
-  std::int64_t factor_updates = 0;
-  std::int64_t contact_cycles = 0;          // contact iterations that cycled and were resolved
+  std::int64_t solves = 0;          // back-substitutions (and relaxation solves)
+  std::int64_t factorizations = 0;  // numeric factorizations
+  std::int64_t factor_updates = 0;  // rank updates of the factor
+  std::int64_t contact_cycles = 0;  // contact iterations that cycled and were resolved
   std::int64_t relaxation_sweeps = 0;       // solver.method = "relaxation": sweeps in all
   std::int64_t relaxation_unconverged = 0;  // relaxation solves stopped by the sweep cap
+};
+
+struct RunSummary : RunCounters {
+  double final_lambda = 0;
+  double wall_seconds = 0;
 };
 
 struct RunResult {

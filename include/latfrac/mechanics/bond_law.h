@@ -1,12 +1,14 @@
-// The bond law: a bond's tension vector and tangent stiffness from its nodes' displacements.
+// The bond law: an intact bond's tension vector and tangent stiffness from its nodes'
+// displacements (the interaction law of the intact state, interaction_law.h).
 //
 // Small kinematics (the default) measures the relative displacement du = u_j - u_i
 // against the reference direction n0:
 //   dn = n0 . du (tension positive),  ds = du - dn n0,
 //   t  = kn dn n0 + ks ds   (the force on node i; node j feels -t)
 // which is linear in du, so the tangent is kn n0 n0' + ks (I - n0 n0').
-// Every residual and every stiffness matrix in latfrac comes from one BondLaw object, so
-// the large-kinematics law (current direction n) replaces it without touching assembly.
+// Every residual and every stiffness matrix in latfrac comes from the pairs' interaction
+// laws, so the large-kinematics law (current direction n) replaces this one without
+// touching assembly.
 //
 // Large kinematics (model.md section 2, docs/large-kinematics.md) keeps the same
 // relative displacement du = u_j - u_i = (x_j - x_i) - d0 but measures it along the
@@ -29,13 +31,10 @@
 // (large).
 #pragma once
 
-#include <Eigen/Core>
-#include <memory>
+#include "latfrac/base/linear_algebra.h"
+#include "latfrac/mechanics/interaction_law.h"
 
 namespace latfrac {
-
-using Vec3 = Eigen::Vector3d;
-using Mat3 = Eigen::Matrix3d;
 
 // Normal and shear displacement of a bond, m.
 struct BondDeformation {
@@ -49,35 +48,28 @@ struct BondReference {
   double length;
 };
 
-class BondLaw {
+// The law of intact bonds (the state argument is always PairState::intact). Its
+// stiffness terms are those at rest: kn n0 n0' + ks (I - n0 n0'), written as kn along n0
+// and ks along the perpendiculars in the lattice's plane (2-D) or space (3-D).
+class BondLaw : public InteractionLaw {
  public:
-  virtual ~BondLaw() = default;
+  explicit BondLaw(int dim) : dim_(dim) {}
   // relative_displacement = u_j - u_i.
   virtual BondDeformation deformation(const BondReference& reference,
                                       const Vec3& relative_displacement) const = 0;
-  virtual Vec3 tension(const BondReference& reference, const Vec3& relative_displacement, double kn,
-                       double ks) const = 0;
-  // The symmetric stiffness block the assembly factorizes: d tension / d relative_displacement
-  // when that is symmetric, its symmetric part otherwise.
-  virtual Mat3 tangent(const BondReference& reference, const Vec3& relative_displacement, double kn,
-                       double ks) const = 0;
-  // d tension / d relative_displacement exactly (nonsymmetric for large kinematics).
-  virtual Mat3 jacobian(const BondReference& reference, const Vec3& relative_displacement,
-                        double kn, double ks) const {
-    return tangent(reference, relative_displacement, kn, ks);
-  }
-  // True when tension is linear in the displacement (equilibrium paths are affine).
-  virtual bool is_linear() const = 0;
+  std::vector<RankOneTerm> stiffness_terms(const PairSprings& pair, PairState) const override;
+
+ private:
+  int dim_;
 };
 
 class SmallKinematics final : public BondLaw {
  public:
+  using BondLaw::BondLaw;
   BondDeformation deformation(const BondReference& reference,
                               const Vec3& relative_displacement) const override;
-  Vec3 tension(const BondReference& reference, const Vec3& relative_displacement, double kn,
-               double ks) const override;
-  Mat3 tangent(const BondReference& reference, const Vec3& relative_displacement, double kn,
-               double ks) const override;
+  Vec3 tension(const PairSprings& pair, PairState, const Vec3& du) const override;
+  Mat3 tangent(const PairSprings& pair, PairState, const Vec3& du) const override;
   bool is_linear() const override { return true; }
 };
 
@@ -85,14 +77,12 @@ class SmallKinematics final : public BondLaw {
 // to zero length (r = 0) has no current direction: it falls back to n0.
 class LargeKinematics final : public BondLaw {
  public:
+  using BondLaw::BondLaw;
   BondDeformation deformation(const BondReference& reference,
                               const Vec3& relative_displacement) const override;
-  Vec3 tension(const BondReference& reference, const Vec3& relative_displacement, double kn,
-               double ks) const override;
-  Mat3 tangent(const BondReference& reference, const Vec3& relative_displacement, double kn,
-               double ks) const override;
-  Mat3 jacobian(const BondReference& reference, const Vec3& relative_displacement, double kn,
-                double ks) const override;
+  Vec3 tension(const PairSprings& pair, PairState, const Vec3& du) const override;
+  Mat3 tangent(const PairSprings& pair, PairState, const Vec3& du) const override;
+  Mat3 jacobian(const PairSprings& pair, PairState, const Vec3& du) const override;
   bool is_linear() const override { return false; }
 };
 

@@ -39,9 +39,4 @@ class FragmentDetector {
   std::vector<std::vector<std::pair<std::int64_t, std::int64_t>>> neighbours_;
 };
 
-// Holds a loose part along the components it lacks, at its current displacement: those
-// free dofs become prescribed (base = current value, rate 0). Along the other axes the
-// part stays free. The caller must call EquilibriumSolver::supports_changed.
-void hold_part(Model& model, const FragmentDetector::LoosePart& part, const Vector& displacement);
-
 }  // namespace latfrac

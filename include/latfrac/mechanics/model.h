@@ -1,10 +1,13 @@
-// The mechanical model of a scene: lattice, bond springs, supports, loads and the bond law.
+// The mechanical model of a scene: lattice, springs, pair states, supports, loads and laws.
 //
-// The supports (which degrees of freedom are prescribed, and how) are in supports.h;
-// scene/model_builder.h builds a Model from a problem file's scene.
+// The lattice, the springs, the strengths and the loads are fixed once built. What a run
+// changes, the state of each pair (intact, open or closed, pair_state.h) and the supports
+// (which degrees of freedom are prescribed, supports.h), can be read by everyone but
+// changed only through a ModelEditor: the equilibrium solver owns the one a run uses, so
+// its factor follows every change (solvers/equilibrium.h). scene/model_builder.h builds a
+// Model from a problem file's scene.
 #pragma once
 
-#include <Eigen/Core>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -12,6 +15,8 @@
 #include "latfrac/base/linear_algebra.h"
 #include "latfrac/geometry/lattice.h"
 #include "latfrac/mechanics/bond_law.h"
+#include "latfrac/mechanics/contact_law.h"
+#include "latfrac/mechanics/pair_state.h"
 #include "latfrac/mechanics/supports.h"
 
 namespace latfrac {
@@ -21,24 +26,52 @@ class Model {
   Lattice lattice;
   std::vector<double> normal_stiffness;  // kn per bond
   std::vector<double> shear_stiffness;   // ks per bond
-  std::vector<std::uint8_t> intact;      // per bond
   std::vector<std::uint8_t> precut;      // per bond: crosses a pre-cut (starts broken)
   // Per-bond moduli and strengths (layers and heterogeneity make them differ), Pa.
   std::vector<double> bond_young, bond_shear_modulus, bond_sigma0, bond_tau0;
-  // Contact (when the scene names it): a broken nearest-neighbour or pre-cut bond keeps a
-  // compression-only normal spring kn, frictionless. contact_active marks the active set:
-  // forces and stiffness use exactly the active springs (a linear law), and the
-  // continuation's active-set iteration keeps the set consistent with dn <= 0.
-  bool contact = false;
-  std::vector<std::uint8_t> contact_active;
   std::vector<double> node_poisson;  // per node, for the 2-D out-of-plane stress
-  DofMap dofs;
-  Vector external_force;  // per dof (gravity), N (2-D: N per metre)
-  std::unique_ptr<BondLaw> law;
+  Vector external_force;             // per dof (gravity), N (2-D: N per metre)
 
   int dim() const { return lattice.dim; }
+  const DofMap& dofs() const { return dofs_; }
+
+  // Pair states.
+  PairState state(std::int64_t bond) const { return states_[bond]; }
+  bool intact(std::int64_t bond) const { return states_[bond] == PairState::intact; }
+  const std::vector<PairState>& pair_states() const { return states_; }
+  // Per bond, 1 while intact: the result files' bond_intact.
+  std::vector<std::uint8_t> intact_flags() const;
+  // Contact (when the scene names it): a broken nearest-neighbour or pre-cut bond keeps a
+  // compression-only normal spring kn, frictionless (contact_law.h).
+  bool has_contact() const { return contact_law_ != nullptr; }
+  // Can bond b's faces touch once it is broken (a nearest-neighbour or pre-cut bond, in a
+  // scene with contact)?
+  bool can_touch(std::int64_t bond) const {
+    return has_contact() && (lattice.bonds[bond].kind == BondKind::nearest || precut[bond]);
+  }
+  // Is bond b broken and able to touch (so its contact law acts)?
+  bool contact_capable(std::int64_t bond) const { return !intact(bond) && can_touch(bond); }
+
+  // Laws.
+  const BondLaw& bond_law() const { return *bond_law_; }
+  // The law acting on bond b in its state: the bond law while intact, the contact law of a
+  // contact-capable broken bond, and none for a broken bond that cannot touch.
+  const InteractionLaw* law_of(std::int64_t bond) const {
+    if (intact(bond)) return bond_law_.get();
+    return contact_capable(bond) ? contact_law_.get() : nullptr;
+  }
+  // Bond b's reference geometry and springs.
+  PairSprings springs(std::int64_t bond) const {
+    return {lattice.bond_direction[bond], lattice.bond_length[bond], normal_stiffness[bond],
+            shear_stiffness[bond]};
+  }
+  // True when every law is linear (paths between events are affine).
+  bool is_linear() const { return bond_law_->is_linear(); }
+
   // The full displacement (every dof) from the free part at extension strain lambda.
   Vector full_displacement(const Vector& free_displacement, double lambda) const;
+  // The free part of a full vector (every dof).
+  Vector free_part(const Vector& full) const;
   // Internal (spring) force per dof: the gradient of the stored energy.
   Vector internal_force(const Vector& displacement) const;
   // The same, summed over the listed bonds only.
@@ -54,13 +87,39 @@ class Model {
     return node_displacement(displacement, lattice.bonds[bond].j) -
            node_displacement(displacement, lattice.bonds[bond].i);
   }
-  // Adds bond b's spring (or active contact) force to `force`.
+  // Bond b's tension (its law's, in its state) at the full displacement; zero without a law.
+  Vec3 bond_tension(const Vector& displacement, std::int64_t bond) const;
+  // Adds bond b's force to `force`: +t on node j, -t on node i.
   void add_bond_force(const Vector& displacement, std::int64_t bond, Vector& force) const;
-  // May broken bond b carry a contact spring?
-  bool contact_capable(std::int64_t bond) const {
-    return contact && !intact[bond] &&
-           (lattice.bonds[bond].kind == BondKind::nearest || precut[bond]);
-  }
+
+ private:
+  friend class ModelEditor;
+  std::vector<PairState> states_;
+  DofMap dofs_;
+  std::unique_ptr<BondLaw> bond_law_;
+  std::unique_ptr<ContactLaw> contact_law_;  // null without contact
+};
+
+// The one way to change what a model's run changes (its pair states and supports) and
+// to set its laws. Builders use it before any solver exists; during a run only the
+// equilibrium solver does, so that its factor follows every change. Tests use it to set
+// up states directly.
+class ModelEditor {
+ public:
+  explicit ModelEditor(Model& model) : model_(model) {}
+  void set_laws(std::unique_ptr<BondLaw> bond_law, std::unique_ptr<ContactLaw> contact_law);
+  // Every bond intact.
+  void reset_states();
+  void set_state(std::int64_t bond, PairState state) { model_.states_[bond] = state; }
+  void set_dofs(DofMap dofs) { model_.dofs_ = std::move(dofs); }
+  // Holds the listed nodes along the listed components (0 .. dim-1) at the given full
+  // displacement: those free dofs become prescribed (base = their value, rate 0), and the
+  // free dofs are numbered again in order.
+  void hold(const std::vector<std::int64_t>& nodes, const std::vector<int>& components,
+            const Vector& displacement);
+
+ private:
+  Model& model_;
 };
 
 }  // namespace latfrac

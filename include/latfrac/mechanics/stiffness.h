@@ -18,8 +18,8 @@ class StiffnessMatrix {
  public:
   explicit StiffnessMatrix(const Model& model);
 
-  // Refills the values with the tangent of model.law at the full displacement u, plus the
-  // normal springs of the active contacts (model.contact_active).
+  // Refills the values with the tangents of the pairs' laws, in their states, at the full
+  // displacement u (open pairs contribute nothing).
   void assemble(const Model& model, const Vector& displacement);
 
   std::int64_t size() const { return static_cast<std::int64_t>(column_start_.size()) - 1; }

@@ -18,9 +18,10 @@ struct RunOptions {
 // The effects a scene names that this version cannot simulate yet (empty: it can run).
 std::vector<std::string> unsupported_effects(const Scene& scene);
 
-// Runs an elastic scene along lambda from 0 to loading.total and stores a snapshot at each
-// requested lambda (the final state when none are requested). Throws InputError for a
-// scene with unsupported effects, Error when a solve fails.
+// Runs a scene along lambda from 0 to loading.total: a fracture run (fracture_run.h) when
+// it has a [strength] section, equilibrium at each snapshot otherwise. Stores a snapshot
+// at each requested lambda (the final state when none are requested). Throws InputError
+// for a scene with unsupported effects, Error when a solve fails.
 RunResult run_scene(const Scene& scene, const RunOptions& options);
 
 // The current time in ISO 8601 (UTC), as provenance records it.

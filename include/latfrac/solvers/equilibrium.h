@@ -54,20 +54,25 @@ class EquilibriumSolver {
   // Requires a linear bond law. One factorization, one two-column solve.
   AffinePath affine_path();
 
-  // Call after changing the model's stiffness by other means: the factor is stale.
-  void stiffness_changed() {
+  // The only way a run changes the model (ModelEditor), so that the factor follows:
+  //
+  // Puts pair b into `state` and updates the factor: the rank-1 terms of the old state's
+  // law come out (rank 2 in 2-D, 3 in 3-D for an intact bond; 1 for a closed contact),
+  // those of the new state's go in. A fresh factorization replaces the updates after
+  // refactor_every of them.
+  void set_pair_state(std::int64_t bond, PairState state);
+  // Holds the given nodes along the given components at the full displacement (their free
+  // dofs become prescribed, rate 0); rebuilds the stiffness pattern and its analysis.
+  struct Hold {
+    std::vector<std::int64_t> nodes;
+    std::vector<int> components;
+  };
+  void hold(const std::vector<Hold>& holds, const Vector& displacement);
+  // Drops the factor: the next solve assembles and factorizes afresh (benchmarks time it).
+  void discard_factor() {
     factor_current_ = false;
-    loads_current_ = false;
     last_solution_valid_ = false;
   }
-
-  // Removes bond b's spring stiffness from the factor (rank 2 in 2-D, 3 in 3-D); call
-  // after marking it broken. A fresh factorization replaces the update after
-  // refactor_every updates.
-  void remove_bond(std::int64_t bond);
-  // Adds or removes bond b's contact spring kn n0 n0' (rank 1); call after changing
-  // model.contact_active[bond].
-  void set_contact(std::int64_t bond, bool active);
 
   // The affine path of the current stiffness, its residual checked at lambda: when the
   // updated factor's answer misses the tolerance, refactorizes and solves again.
@@ -76,9 +81,6 @@ class EquilibriumSolver {
   // what a cascade at fixed lambda needs after each break.
   Vector checked_solve(double lambda);
 
-  // Call after the model's supports changed (a fragment held fixed): rebuilds the
-  // stiffness pattern, the analysis and KINSOL's memory.
-  void supports_changed();
 
   // max |R(0, lambda)|: the size of the load at lambda, N.
   double load_scale(double lambda);
@@ -91,6 +93,9 @@ class EquilibriumSolver {
   struct Kinsol;  // equilibrium_newton.cpp
   friend struct Kinsol;
   void reset_kinsol();
+  // The model's supports changed: rebuilds the stiffness pattern, the analysis and
+  // KINSOL's memory.
+  void supports_changed();
   void refactorize(const Vector& free_displacement, double lambda);
   // The loads on the free dofs at zero free displacement: load0 (gravity and the fixed
   // part of the supports) and load1 (per unit lambda), so that R(0, lambda) = -(load0 +
@@ -104,9 +109,7 @@ class EquilibriumSolver {
   // The relative residual of a free displacement at lambda, max |R| / max |R(0, lambda)|.
   double relative_residual(const Vector& free_displacement, double lambda);
   // Rank update of the factor with the columns sqrt(w) (e_j - e_i) (x) v on the free dofs.
-  void update_factor(std::int64_t bond,
-                     const std::vector<std::pair<double, Vec3>>& weighted_directions,
-                     bool downdate);
+  void update_factor(std::int64_t bond, const std::vector<RankOneTerm>& terms, bool downdate);
   long updates_since_factorization_ = 0;
   // The last checked solution and its lambda, and the forces that the factor updates since
   // then took out of it or added to it, on the free dofs. At the same lambda the new
@@ -116,8 +119,7 @@ class EquilibriumSolver {
   void remember_solution(const Vector& free_displacement, double lambda);
   // Appends v on node j's free dofs and -v on node i's (the pattern of bond (i, j)).
   void append_on_bond(std::int64_t bond, const Vec3& v, CholeskyFactor::Column& column) const;
-  void record_force_change(std::int64_t bond,
-                           const std::vector<std::pair<double, Vec3>>& weighted_directions,
+  void record_force_change(std::int64_t bond, const std::vector<RankOneTerm>& terms,
                            bool downdate);
   Vector last_solution_;
   double last_lambda_ = 0;
@@ -125,6 +127,7 @@ class EquilibriumSolver {
   CholeskyFactor::Column pending_forces_;
 
   Model& model_;
+  ModelEditor editor_;
   SolverOptions options_;
   StiffnessMatrix stiffness_;
   CholeskyFactor factor_;

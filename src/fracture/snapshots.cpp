@@ -1,5 +1,5 @@
-// Recording the lattice and snapshots of the model's state.
-#include "latfrac/fracture/snapshot.h"
+// Recording the lattice and snapshots of the model's state, and the snapshot schedule.
+#include "latfrac/fracture/snapshots.h"
 
 #include "latfrac/mechanics/node_stress.h"
 
@@ -26,7 +26,7 @@ Snapshot make_snapshot(const Model& model, const Vector& displacement, double la
     const Vec3 u = model.node_displacement(displacement, n);
     s.displacement.insert(s.displacement.end(), {u.x(), u.y(), u.z()});
   }
-  s.bond_intact = model.intact;
+  s.bond_intact = model.intact_flags();
   if (evaluator) {
     std::vector<BreakMode> modes;
     evaluator->evaluate(model, displacement, s.bond_failure_index, modes);
@@ -35,6 +35,11 @@ Snapshot make_snapshot(const Model& model, const Vector& displacement, double la
   }
   s.node_stress = node_stresses(model, displacement);
   return s;
+}
+
+SnapshotSchedule::SnapshotSchedule(const std::vector<double>& requested, double total)
+    : lambdas_(requested) {
+  if (lambdas_.empty()) lambdas_.push_back(total);
 }
 
 }  // namespace latfrac

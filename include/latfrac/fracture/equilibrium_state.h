@@ -1,0 +1,98 @@
+// The equilibrium a fracture run is at: how it is computed, what is cached, and how the
+// model is changed.
+//
+// Three methods, chosen once from the scene: with a linear law, the closed-form affine
+// path u(lambda) = u_g + lambda u_e of the current stiffness (one factorization, then
+// factor updates); with a nonlinear law, KINSOL's Newton iteration from the last state;
+// with solver.method = "relaxation", Gauss-Seidel from the last state. Either way the
+// caller asks for the displacement at a lambda and gets the equilibrium of the model as it
+// is now.
+//
+// One validity rule: the cached state (at its lambda) and the cached path describe the
+// model as it is. Every change goes through change_pairs(), which changes the pairs (the
+// solver updates its factor), holds what they cut loose and re-equilibrates before it
+// returns, so no stale state can be read. The safety net for singular stiffness (a
+// factorization that finds no stiffness along some motion holds that one unknown and tries
+// again) invalidates both.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "latfrac/fracture/run_result.h"
+#include "latfrac/mechanics/fragments.h"
+#include "latfrac/solvers/equilibrium.h"
+#include "latfrac/solvers/relaxation.h"
+
+namespace latfrac {
+
+// One pair's new state.
+struct PairChange {
+  std::int64_t bond;
+  PairState state;
+};
+
+class EquilibriumState {
+ public:
+  EquilibriumState(Model& model, EquilibriumSolver& solver, const SolverOptions& options);
+
+  const Model& model() const { return model_; }
+  EquilibriumSolver& solver() { return solver_; }
+  // True when equilibria lie on closed-form affine paths (a linear law, a direct solver).
+  bool affine() const { return model_.is_linear() && !relaxation_; }
+
+  // The full displacement at lambda: the state last computed when it is at lambda,
+  // otherwise the affine path at lambda, or a new equilibrium (Newton, relaxation).
+  Vector displacement(double lambda);
+  // The same on the free dofs.
+  Vector free_state(double lambda);
+  // The affine path of the current stiffness (solved, residual checked, when stale).
+  const AffinePath& path(double lambda);
+
+  // Puts each pair into its new state (in order; the solver updates its factor), holds
+  // every part that a pair which stopped connecting its nodes cut loose, at `before` (the
+  // full displacement before the change; docs/robustness.md), and re-equilibrates at
+  // lambda.
+  void change_pairs(const std::vector<PairChange>& changes, double lambda, const Vector& before);
+  // Takes a free displacement computed elsewhere (the integrated path) as the state at lambda.
+  void adopt(const Vector& free_state, double lambda);
+
+  // Parts held for lack of support since the run started, in order.
+  const std::vector<FragmentEvent>& fragments() const { return fragments_; }
+  // With solver.method = "relaxation": relaxation solves, their sweeps, and those that
+  // stopped at the sweep cap before reaching the tolerance.
+  std::int64_t relaxation_solves() const { return relaxation_solves_; }
+  std::int64_t relaxation_sweeps() const { return relaxation_sweeps_; }
+  std::int64_t relaxation_unconverged() const { return relaxation_unconverged_; }
+
+ private:
+  // Re-equilibrates at lambda after the model changed.
+  void resolve(double lambda);
+  // Runs `solve`; where a factorization finds no stiffness, holds that unknown and retries.
+  template <typename Solve>
+  auto holding_singular(double lambda, Solve solve);
+  // Holds each loose part along the axes it lacks, at `before` (docs/robustness.md).
+  void hold(const std::vector<FragmentDetector::LoosePart>& parts, double lambda,
+            const Vector& before);
+  // Newton (KINSOL) to equilibrium at lambda from the current state: the nonlinear law.
+  void newton(double lambda);
+  // Relaxes the state to equilibrium at lambda, starting from the current state.
+  void relax(double lambda);
+  void invalidate() { state_valid_ = path_valid_ = false; }
+
+  Model& model_;
+  EquilibriumSolver& solver_;
+  FragmentDetector fragments_detector_;
+  std::optional<RelaxationSolver> relaxation_;  // set when the scene asks for relaxation
+  AffinePath path_;
+  bool path_valid_ = false;  // path_ describes the current model
+  Vector state_;             // free displacement at state_lambda_ (also the next warm start)
+  double state_lambda_ = 0;
+  bool state_valid_ = false;
+  std::vector<FragmentEvent> fragments_;
+  std::int64_t relaxation_solves_ = 0, relaxation_sweeps_ = 0, relaxation_unconverged_ = 0;
+};
+
+}  // namespace latfrac

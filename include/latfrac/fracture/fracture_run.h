@@ -1,0 +1,69 @@
+// A fracture run along the extension strain lambda: the paper's fixed-step algorithm, the
+// event-driven algorithm that locates each event exactly, and the event-driven algorithm
+// on integrated (CVODE) paths for a nonlinear law (model.md section 5).
+//
+//   fixed-step     lambda_k = k ds (the last step ends at the total). At each step the
+//                  contacts settle, then the cascade breaks every bond with f >= 1.
+//   event-driven   from an equilibrium, every event source (break_source.h,
+//                  pair_switch_source.h) proposes its first event on the current affine
+//                  path; the earliest is taken, then the cascade runs at its lambda.
+//   integrated     CVODE follows the nonlinear path and stops where a bond reaches f = 1
+//                  (solvers/nonlinear_path.h); contacts settle at breaks and snapshots.
+// The pieces: the equilibrium and its caches (equilibrium_state.h), the contacts' settling
+// (pair_settling.h), breaking and cascades (breaking.h), the snapshots (snapshots.h).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "latfrac/base/progress.h"
+#include "latfrac/criteria/failure_evaluator.h"
+#include "latfrac/fracture/breaking.h"
+#include "latfrac/fracture/equilibrium_state.h"
+#include "latfrac/fracture/pair_settling.h"
+#include "latfrac/fracture/run_result.h"
+#include "latfrac/fracture/schedule.h"
+#include "latfrac/fracture/snapshots.h"
+
+namespace latfrac {
+
+class FractureRun {
+ public:
+  // The model's supports must already hold every part that the pre-cuts cut loose
+  // (prepare_supports, initial_supports.h). Events and snapshots go into `result`.
+  FractureRun(Model& model, std::shared_ptr<const FailureCriterion> criterion,
+              BondStress reading, const Schedule& schedule, const SolverOptions& options,
+              EquilibriumSolver& solver, ProgressLine& progress, RunResult& result);
+
+  // Runs from lambda = 0 to the schedule's total, by its stepping method.
+  void run();
+  // Follow paths with CVODE and KINSOL (docs/large-kinematics.md) even when the bond law
+  // is linear and the closed-form route would serve: for comparing the two routes.
+  void use_integrated_path(bool on) { integrated_ = on; }
+
+  // What the run counted, the solver's work included.
+  RunCounters counters() const;
+
+ private:
+  void start();
+  void fixed_steps();
+  void event_driven();
+  void integrated_events();
+  void take_snapshot(double lambda);
+  void finish();
+
+  Model& model_;
+  Schedule schedule_;
+  SolverOptions options_;
+  EquilibriumSolver& solver_;
+  ProgressLine& progress_;
+  RunResult& result_;
+  FailureEvaluator evaluator_;
+  EquilibriumState equilibrium_;
+  PairSettling settling_;
+  Breaking breaking_;
+  SnapshotSchedule snapshots_;
+  bool integrated_ = false;
+};
+
+}  // namespace latfrac

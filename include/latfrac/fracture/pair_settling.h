@@ -1,0 +1,40 @@
+// Settling the pairs at a fixed lambda: every switching pair (a contact) in the state its
+// law asks for at the current equilibrium.
+//
+// An active-set iteration: switch every pair whose law's settled_state() differs from its
+// state (a contact that pulls opens, one that penetrates closes), re-equilibrate, repeat.
+// The iteration ends when no pair wants to switch. If a set of closed contacts recurs, it
+// is cycling (chattering): then only the switches that close are made, one more
+// equilibrium is computed and the iteration stops; the few contacts left slightly
+// pulling are checked again at the next event or step (docs/robustness.md). Every call
+// ends: a repeated set always triggers that rule.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "latfrac/fracture/equilibrium_state.h"
+
+namespace latfrac {
+
+// Which pairs are closed contacts (one byte per bond, 1 if closed): the set the cycle
+// rule compares.
+std::string closed_pairs(const Model& model);
+
+class PairSettling {
+ public:
+  explicit PairSettling(EquilibriumState& equilibrium) : equilibrium_(equilibrium) {}
+  // Settles at lambda; nothing to do in a model without contact.
+  void settle(double lambda);
+  // Iterations that cycled and were ended by the rule above (with the event loop's own
+  // guard, contact_cycles in /summary).
+  std::int64_t cycles() const { return cycles_; }
+  void count_cycle() { ++cycles_; }
+
+ private:
+  EquilibriumState& equilibrium_;
+  std::int64_t cycles_ = 0;
+};
+
+}  // namespace latfrac

@@ -1,0 +1,79 @@
+// The interaction laws: a pair's force, its tangent and its switch functions, by state.
+//
+// Every pair interaction goes through one law object: the intact bond's springs (a
+// BondLaw, bond_law.h) and the contact that a broken bond leaves (contact_law.h). A law
+// gives, for the pair's state:
+//   - its tension t (the force on node j; node i feels -t) at the relative displacement
+//     du = u_j - u_i, and its tangent dt/d(du), whose symmetric part the stiffness holds;
+//   - its stiffness as weighted rank-1 terms sum w d d' (for a linear law, the exact
+//     tangent): what a factor update removes when the pair leaves the state and adds when
+//     it enters it;
+//   - its switch functions: the state the pair should be in at du (settling at a fixed
+//     lambda) and the first point of an affine path du(s) = du0 + s du1 where that state
+//     changes (an event). A law whose pairs never switch has none.
+// A new kind of interaction (frictional contact, say) is a new law class and the states it
+// adds; the assembly, the solvers and the event loop ask the law and need no edit.
+#pragma once
+
+#include <limits>
+#include <vector>
+
+#include "latfrac/base/linear_algebra.h"
+#include "latfrac/mechanics/pair_state.h"
+
+namespace latfrac {
+
+// A pair's reference geometry and springs: unit vector n0 from node i to node j, length
+// L0 (m), normal and shear stiffness (N/m, or N/m per metre in 2-D).
+struct PairSprings {
+  const Vec3& direction;
+  double length;
+  double kn;
+  double ks;
+};
+
+// One rank-1 stiffness term w d d' (w in N/m, d a unit vector).
+struct RankOneTerm {
+  double weight;
+  Vec3 direction;
+};
+
+// Where a pair switches on an affine path: at s, into `to`.
+struct PairSwitch {
+  double s = std::numeric_limits<double>::infinity();  // +inf: no switch before the end
+  PairState to = PairState::open;
+  bool found() const { return s < std::numeric_limits<double>::infinity(); }
+};
+
+class InteractionLaw {
+ public:
+  virtual ~InteractionLaw() = default;
+  virtual Vec3 tension(const PairSprings& pair, PairState state, const Vec3& du) const = 0;
+  // The symmetric stiffness block the assembly factorizes: dt/d(du) when that is
+  // symmetric, its symmetric part otherwise.
+  virtual Mat3 tangent(const PairSprings& pair, PairState state, const Vec3& du) const = 0;
+  // dt/d(du) exactly (nonsymmetric for large kinematics).
+  virtual Mat3 jacobian(const PairSprings& pair, PairState state, const Vec3& du) const {
+    return tangent(pair, state, du);
+  }
+  // The stiffness of the state at rest as rank-1 terms (empty: none).
+  virtual std::vector<RankOneTerm> stiffness_terms(const PairSprings& pair,
+                                                   PairState state) const = 0;
+  // True when the tension is linear in du (equilibrium paths are affine).
+  virtual bool is_linear() const = 0;
+
+  // The state the pair should be in at du: its own when the state is consistent.
+  virtual PairState settled_state(const PairSprings&, PairState state, const Vec3&) const {
+    return state;
+  }
+  // On du(s) = du0 + s du1: the first s in (from, to] where the state changes; `at_from`
+  // also allows s = from, for a pair already at or past its switch and moving on (a tie
+  // with a switch just made, or rounding). None when the pairs of this law never switch.
+  virtual PairSwitch next_switch(const PairSprings&, PairState, const Vec3& /*du0*/,
+                                 const Vec3& /*du1*/, double /*from*/, double /*to*/,
+                                 bool /*at_from*/) const {
+    return {};
+  }
+};
+
+}  // namespace latfrac

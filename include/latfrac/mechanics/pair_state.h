@@ -1,0 +1,19 @@
+// The state of a pair of nodes joined in the lattice: an intact bond, or a broken one
+// that is an open or a closed contact.
+#pragma once
+
+#include <cstdint>
+
+namespace latfrac {
+
+// intact: the bond's springs act (its bond law).
+// open:   broken, and nothing acts (a contact that is apart, or a broken bond that cannot
+//         touch: next-nearest, or a scene without contact).
+// closed: broken, and its contact law acts (the faces touch).
+enum class PairState : std::uint8_t { intact = 0, open = 1, closed = 2 };
+
+// Whether the pair holds its two nodes together (intact, or a closed contact): what the
+// fragment check follows.
+inline bool connects(PairState state) { return state != PairState::open; }
+
+}  // namespace latfrac

@@ -1,0 +1,61 @@
+// The next break on an affine path, and taking it.
+#include "latfrac/fracture/break_source.h"
+
+#include <cmath>
+
+namespace latfrac {
+
+FullPath full_path(const Model& model, const AffinePath& path) {
+  FullPath full;
+  full.at_zero = model.full_displacement(path.gravity, 0.0);
+  full.per_lambda = model.full_displacement(path.at(1.0), 1.0) - full.at_zero;
+  return full;
+}
+
+PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
+                        const AffinePath& path, double from, double to) {
+  const double sign = to < from ? -1.0 : 1.0;  // search in s = sign * lambda, increasing
+  const double s_from = sign * from, s_to = sign * to;
+  const FullPath full = full_path(model, path);
+  const PathStresses stresses = evaluator.path_stresses(model, full.at_zero, full.per_lambda, sign);
+  std::vector<double> crossing(model.lattice.bond_count(), std::numeric_limits<double>::infinity());
+  double first = std::numeric_limits<double>::infinity();
+  for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
+    if (!model.intact(b)) continue;
+    // Only a crossing up to the earliest found so far (with room for ties) can matter.
+    const double needed_until =
+        std::isfinite(first)
+            ? first + 2 * FailureEvaluator::tie_tolerance * std::max(std::abs(first), 1e-300)
+            : std::numeric_limits<double>::infinity();
+    crossing[b] = evaluator.first_crossing(model, b, stresses, s_from, s_to, needed_until);
+    first = std::min(first, crossing[b]);
+  }
+  PathCrossing event;
+  if (!std::isfinite(first)) return event;
+  const double window = first + FailureEvaluator::tie_tolerance * std::max(std::abs(first), 1e-300);
+  for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
+    if (crossing[b] <= window) event.tied.push_back(b);
+  }
+  event.lambda = sign * first;
+  return event;
+}
+
+double BreakSource::propose(const AffinePath& path, double from, double to) {
+  proposed_ = next_break(equilibrium_.model(), evaluator_, path, from, to);
+  return proposed_.lambda;
+}
+
+// Every bond that reached f = 1 at this lambda, within rounding, breaks now (explicitly:
+// roundoff may leave its f a hair below 1).
+void BreakSource::take(double lambda) {
+  const std::int64_t cascade_id = breaking_.new_cascade();
+  std::vector<double> index;
+  std::vector<BreakMode> modes;
+  evaluator_.evaluate(equilibrium_.model(), equilibrium_.displacement(lambda), index, modes);
+  std::vector<CriticalBond> group;
+  for (std::int64_t bond : proposed_.tied) group.push_back({bond, index[bond], modes[bond]});
+  breaking_.break_group(group, lambda, cascade_id);
+  breaking_.cascade(lambda, cascade_id);
+}
+
+}  // namespace latfrac

@@ -1,0 +1,143 @@
+// The equilibrium of a fracture run: its method, its caches, and the changes of the model.
+#include "latfrac/fracture/equilibrium_state.h"
+
+#include "latfrac/base/error.h"
+
+namespace latfrac {
+
+EquilibriumState::EquilibriumState(Model& model, EquilibriumSolver& solver,
+                                   const SolverOptions& options)
+    : model_(model), solver_(solver), fragments_detector_(model) {
+  if (options.method == EquilibriumMethod::relaxation) relaxation_.emplace(model, options);
+}
+
+// The safety net behind the support check: a piece held only by frictionless contacts
+// (stiff along their normals alone) can still slide, which no connectivity check sees.
+// When a factorization finds no stiffness, the unknown where it showed is held at its last
+// known displacement (that one dof: a zero-energy mode is non-zero there, so holding it
+// removes the mode, and holding the node's other axes could hold a direction in which the
+// piece is supported), recorded as a one-node fragment, and the solve tried again
+// (docs/robustness.md).
+template <typename Solve>
+auto EquilibriumState::holding_singular(double lambda, Solve solve) {
+  const DofMap& dofs = model_.dofs();
+  for (std::int64_t attempt = 0;; ++attempt) {
+    try {
+      return solve();
+    } catch (const SingularStiffness& singular) {
+      if (singular.unknown() < 0 || attempt > dofs.dof_count()) throw;
+      std::int64_t dof = 0;
+      while (dof < dofs.dof_count() && dofs.free_index[dof] != singular.unknown()) ++dof;
+      if (dof == dofs.dof_count()) throw;
+      const Vector last = state_.size() == dofs.free_count ? model_.full_displacement(state_, lambda)
+                                                           : Vector::Zero(dofs.dof_count());
+      solver_.hold({{{dof / model_.dim()}, {static_cast<int>(dof % model_.dim())}}}, last);
+      fragments_.push_back({lambda, 1});
+      invalidate();
+      state_ = Vector();
+    }
+  }
+}
+
+void EquilibriumState::newton(double lambda) {
+  const std::int64_t unknowns = model_.dofs().free_count;
+  if (state_.size() != unknowns) state_ = Vector::Zero(unknowns);
+  holding_singular(lambda, [&] {
+    if (state_.size() != model_.dofs().free_count) state_ = Vector::Zero(model_.dofs().free_count);
+    return solver_.solve(lambda, state_);
+  });
+  state_lambda_ = lambda;
+  state_valid_ = true;
+  path_valid_ = false;
+}
+
+// The classical baseline: no factor and no affine path; every equilibrium is relaxed from
+// the last one (whose prescribed dofs simply take their values at the new lambda).
+void EquilibriumState::relax(double lambda) {
+  // The last state is the starting guess (after a part was held, mapped onto the new
+  // unknowns by hold()).
+  if (state_.size() != model_.dofs().free_count) state_ = Vector::Zero(model_.dofs().free_count);
+  const RelaxationReport report = relaxation_->solve(model_, lambda, state_);
+  state_lambda_ = lambda;
+  state_valid_ = true;
+  ++relaxation_solves_;
+  relaxation_sweeps_ += report.sweeps;
+  if (!report.converged) ++relaxation_unconverged_;
+}
+
+Vector EquilibriumState::displacement(double lambda) {
+  if (state_valid_ && lambda == state_lambda_) return model_.full_displacement(state_, lambda);
+  if (!affine()) {
+    relaxation_ ? relax(lambda) : newton(lambda);
+    return model_.full_displacement(state_, lambda);
+  }
+  return model_.full_displacement(path(lambda).at(lambda), lambda);
+}
+
+Vector EquilibriumState::free_state(double lambda) {
+  if (!(state_valid_ && lambda == state_lambda_) && affine()) return path(lambda).at(lambda);
+  displacement(lambda);  // brings state_ to lambda
+  return state_;
+}
+
+const AffinePath& EquilibriumState::path(double lambda) {
+  if (!path_valid_) {
+    path_ = holding_singular(lambda, [&] { return solver_.checked_affine_path(lambda); });
+    path_valid_ = true;
+  }
+  return path_;
+}
+
+void EquilibriumState::resolve(double lambda) {
+  if (!affine()) {
+    relaxation_ ? relax(lambda) : newton(lambda);
+    path_valid_ = false;
+    return;
+  }
+  state_ = holding_singular(lambda, [&] { return solver_.checked_solve(lambda); });
+  state_lambda_ = lambda;
+  state_valid_ = true;
+  path_valid_ = false;
+}
+
+void EquilibriumState::hold(const std::vector<FragmentDetector::LoosePart>& parts, double lambda,
+                            const Vector& before) {
+  if (parts.empty()) return;
+  std::vector<EquilibriumSolver::Hold> holds;
+  for (const auto& part : parts) {
+    holds.push_back({part.nodes, part.free_components});
+    fragments_.push_back({lambda, static_cast<std::int64_t>(part.nodes.size())});
+  }
+  solver_.hold(holds, before);
+  invalidate();  // the unknowns changed
+  if (relaxation_) state_ = model_.free_part(before);
+}
+
+void EquilibriumState::change_pairs(const std::vector<PairChange>& changes, double lambda,
+                                    const Vector& before) {
+  std::vector<std::int64_t> disconnected;
+  for (const PairChange& change : changes) {
+    const bool connected = connects(model_.state(change.bond));
+    solver_.set_pair_state(change.bond, change.state);
+    if (connected && !connects(change.state)) disconnected.push_back(change.bond);
+  }
+  // The first part is held where it was; a later one where a solve of the changed model
+  // puts it (as the continuation always did).
+  bool held = false;
+  for (std::int64_t bond : disconnected) {
+    const auto parts = fragments_detector_.unsupported_after_break(model_, bond);
+    if (parts.empty()) continue;
+    hold(parts, lambda, held ? displacement(lambda) : before);
+    held = true;
+  }
+  resolve(lambda);
+}
+
+void EquilibriumState::adopt(const Vector& free_state, double lambda) {
+  state_ = free_state;
+  state_lambda_ = lambda;
+  state_valid_ = true;
+  path_valid_ = false;
+}
+
+}  // namespace latfrac

@@ -1,0 +1,137 @@
+// The three drivers of a fracture run: fixed steps, events on affine paths, events on
+// integrated paths.
+#include "latfrac/fracture/fracture_run.h"
+
+#include <cmath>
+
+#include "latfrac/base/error.h"
+#include "latfrac/fracture/break_source.h"
+#include "latfrac/fracture/event_loop.h"
+#include "latfrac/fracture/pair_switch_source.h"
+#include "latfrac/solvers/nonlinear_path.h"
+
+namespace latfrac {
+
+FractureRun::FractureRun(Model& model, std::shared_ptr<const FailureCriterion> criterion,
+                         BondStress reading, const Schedule& schedule,
+                         const SolverOptions& options, EquilibriumSolver& solver,
+                         ProgressLine& progress, RunResult& result)
+    : model_(model),
+      schedule_(schedule),
+      options_(options),
+      solver_(solver),
+      progress_(progress),
+      result_(result),
+      evaluator_(std::move(criterion), reading, model),
+      equilibrium_(model, solver, options),
+      settling_(equilibrium_),
+      breaking_(equilibrium_, settling_, evaluator_, progress, result),
+      snapshots_(schedule.snapshots, schedule.total),
+      integrated_(!model.is_linear()) {}
+
+RunCounters FractureRun::counters() const {
+  RunCounters counters;
+  counters.breaks = breaking_.breaks();
+  counters.contact_cycles = settling_.cycles();
+  counters.relaxation_sweeps = equilibrium_.relaxation_sweeps();
+  counters.relaxation_unconverged = equilibrium_.relaxation_unconverged();
+  counters.solves = solver_.counters().solves + equilibrium_.relaxation_solves();
+  counters.factorizations = solver_.counters().factorizations;
+  counters.factor_updates = solver_.counters().factor_updates;
+  return counters;
+}
+
+void FractureRun::run() {
+  start();
+  if (schedule_.stepping.method == SteppingMethod::fixed) {
+    fixed_steps();
+  } else if (integrated_) {
+    integrated_events();
+  } else {
+    if (!equilibrium_.affine())
+      throw Error("event-driven breaking needs the exact affine path (not relaxation)");
+    event_driven();
+  }
+  finish();
+}
+
+// Pre-cut bonds are broken from the start: events of mode pre-cut at lambda 0, cascade 0.
+void FractureRun::start() {
+  for (std::int64_t b = 0; b < model_.lattice.bond_count(); ++b) {
+    if (model_.precut[b]) result_.events.push_back({0.0, b, 0.0, BreakMode::precut, 0});
+  }
+}
+
+void FractureRun::finish() {
+  result_.fragments.insert(result_.fragments.end(), equilibrium_.fragments().begin(),
+                           equilibrium_.fragments().end());
+}
+
+void FractureRun::take_snapshot(double lambda) {
+  result_.snapshots.push_back(
+      make_snapshot(model_, equilibrium_.displacement(lambda), lambda, &evaluator_));
+}
+
+// A snapshot is taken at the first step that reaches its lambda.
+void FractureRun::fixed_steps() {
+  const double total = schedule_.total, increment = schedule_.stepping.increment;
+  const long steps =
+      total == 0 ? 0 : static_cast<long>(std::ceil(std::abs(total) / increment - 1e-9));
+  for (long k = 0; k <= steps; ++k) {
+    const double lambda = k == steps ? total : std::copysign(k * increment, total);
+    settling_.settle(lambda);
+    breaking_.cascade(lambda);
+    snapshots_.take_until(lambda, true, [&](double) { take_snapshot(lambda); }, 1e-12);
+    progress_.update(lambda, breaking_.breaks());
+  }
+}
+
+// Breaks first, then contact switches: on a tie the break is taken.
+void FractureRun::event_driven() {
+  settling_.settle(0);
+  breaking_.cascade(0);
+  BreakSource breaks(equilibrium_, evaluator_, breaking_);
+  PairSwitchSource switches(equilibrium_, settling_, breaking_);
+  follow_events(
+      equilibrium_, {&breaks, &switches}, 0, schedule_.total,
+      [&](double next) { snapshots_.take_until(next, false, [&](double at) { take_snapshot(at); }); },
+      [&](double lambda) { progress_.update(lambda, breaking_.breaks()); });
+  snapshots_.take_until(schedule_.total, true, [&](double at) { take_snapshot(at); });
+}
+
+// The general route (model.md section 5): from an equilibrium, CVODE follows the path to
+// the next snapshot or the end and stops where a bond's f reaches 1; KINSOL puts the state
+// on the path there. The bonds tied at that f (within 1e-9: the root is located to the
+// solver's tolerance, not to rounding) break as a group, then the cascade runs. Contact
+// switches are settled at breaks and snapshots, not located as events on this route.
+void FractureRun::integrated_events() {
+  NonlinearPath path(model_, solver_, evaluator_, options_);
+  const double total = schedule_.total;
+  double lambda = 0;
+  settling_.settle(lambda);
+  breaking_.cascade(lambda);
+  while (true) {
+    snapshots_.take_until(lambda, true, [&](double) { take_snapshot(lambda); });
+    if (lambda == total) break;
+    const double target = snapshots_.next_or(total);
+    Vector state = equilibrium_.free_state(lambda);
+    const PathEvent event = path.advance(lambda, target, state);
+    lambda = event.bond >= 0 ? event.lambda : target;
+    equilibrium_.adopt(state, lambda);
+    if (event.bond >= 0) {
+      std::vector<CriticalBond> group =
+          evaluator_.critical_group(model_, equilibrium_.displacement(lambda), 1 - 1e-9);
+      if (group.empty()) group.push_back(evaluator_.most_critical(model_, equilibrium_.displacement(lambda)));
+      const std::int64_t cascade_id = breaking_.new_cascade();
+      breaking_.break_group(group, lambda, cascade_id);
+      breaking_.cascade(lambda, cascade_id);
+    } else if (model_.has_contact()) {
+      // At a snapshot or the end: the contacts the path has crossed switch here.
+      settling_.settle(lambda);
+      breaking_.cascade(lambda);
+    }
+    progress_.update(lambda, breaking_.breaks());
+  }
+}
+
+}  // namespace latfrac

@@ -1,0 +1,45 @@
+// The next contact switch on an affine path, and taking it.
+#include "latfrac/fracture/pair_switch_source.h"
+
+namespace latfrac {
+
+// The first switch after `from`, lowest bond id on ties.
+double PairSwitchSource::propose(const AffinePath& path, double from, double to) {
+  const Model& model = equilibrium_.model();
+  proposed_.bond = -1;
+  if (!model.has_contact()) return none;
+  const double sign = to < from ? -1.0 : 1.0;  // search in s = sign * lambda, increasing
+  const double s_from = sign * from, s_to = sign * to;
+  const FullPath full = full_path(model, path);
+  double first = std::numeric_limits<double>::infinity();
+  for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
+    if (!model.contact_capable(b)) continue;
+    const PairSwitch change = model.law_of(b)->next_switch(
+        model.springs(b), model.state(b), model.bond_displacement(full.at_zero, b),
+        sign * model.bond_displacement(full.per_lambda, b), s_from, s_to, switch_at_start_);
+    if (change.found() && change.s < first) {
+      first = change.s;
+      proposed_ = {b, change.to};
+    }
+  }
+  return proposed_.bond >= 0 ? sign * first : none;
+}
+
+void PairSwitchSource::reached(double lambda) {
+  if (lambda == sets_lambda_) return;
+  sets_at_lambda_.clear();
+  sets_lambda_ = lambda;
+  switch_at_start_ = true;
+}
+
+void PairSwitchSource::take(double lambda) {
+  equilibrium_.change_pairs({proposed_}, lambda, equilibrium_.displacement(lambda));
+  settling_.settle(lambda);
+  breaking_.cascade(lambda);
+  if (!sets_at_lambda_.insert(closed_pairs(equilibrium_.model())).second) {
+    switch_at_start_ = false;
+    settling_.count_cycle();
+  }
+}
+
+}  // namespace latfrac
