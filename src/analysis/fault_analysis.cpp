@@ -8,16 +8,14 @@
 
 #include "cluster_split.h"
 #include "fault_fit.h"
+#include "fault_roles.h"
+#include "grabens.h"
 #include "latfrac/base/error.h"
 #include "point_links.h"
 
 namespace latfrac {
 
 namespace {
-
-// Faults that may bound a graben: inclined, neither near vertical nor near horizontal.
-constexpr double kGrabenMinDipDeg = 20.0;
-constexpr double kGrabenMaxDipDeg = 80.0;
 
 using Point = Eigen::Vector3d;
 
@@ -48,6 +46,12 @@ void check_input(const RunResult& result, std::size_t index, const FaultOptions&
   }
   if (options.max_split_depth < 0) {
     throw InputError("fault analysis: max_split_depth must be 0 (never split) or more");
+  }
+  if (!(options.wall_distance_spacings >= 0)) {
+    throw InputError("fault analysis: the wall distance must be 0 or more (spacings)");
+  }
+  if (!(options.wall_share > 0 && options.wall_share <= 1)) {
+    throw InputError("fault analysis: the wall share must be above 0 and at most 1");
   }
   const std::size_t nodes = result.positions.size() / 3;
   const std::size_t bonds = result.bonds.size() / 2;
@@ -89,106 +93,37 @@ std::vector<std::int8_t> break_modes(const RunResult& result) {
   return modes;
 }
 
-// The edges of the bounding box of the nodes' reference positions along x, y, z, m.
-Point lattice_size(const RunResult& result) {
+// The bounding box of the nodes' reference positions, m.
+struct Box {
+  Point low = Point::Zero(), high = Point::Zero();
+};
+
+Box lattice_box(const RunResult& result) {
   const std::size_t nodes = result.positions.size() / 3;
-  if (nodes == 0) return Point::Zero();
-  Point low = node_position(result, 0), high = low;
+  if (nodes == 0) return {};
+  Box box{node_position(result, 0), node_position(result, 0)};
   for (std::size_t i = 1; i < nodes; ++i) {
-    low = low.cwiseMin(node_position(result, static_cast<std::int64_t>(i)));
-    high = high.cwiseMax(node_position(result, static_cast<std::int64_t>(i)));
+    box.low = box.low.cwiseMin(node_position(result, static_cast<std::int64_t>(i)));
+    box.high = box.high.cwiseMax(node_position(result, static_cast<std::int64_t>(i)));
   }
-  return high - low;
-}
-
-// Where the fault's trace in the x-z section at `y` meets the level z.
-double trace_x(const Fault& fault, double y, double z) {
-  const auto& n = fault.normal;
-  const auto& c = fault.centroid;
-  return c[0] - (n[1] * (y - c[1]) + n[2] * (z - c[2])) / n[0];
-}
-
-bool bounds_graben(const Fault& fault) {
-  return !fault.diffuse && fault.dip_direction != 0 && fault.dip_deg >= kGrabenMinDipDeg &&
-         fault.dip_deg <= kGrabenMaxDipDeg;
-}
-
-// Grabens: neighbouring inclined faults, ordered by where they reach the surface, of which
-// the left one descends towards +x and the right one towards -x. Their traces then meet
-// below the surface, and both faults must lie above that point. The subsidence compares the
-// top-row nodes between the two traces with those outside, leaving out a band of one spacing
-// on each side of either trace.
-std::vector<Graben> find_grabens(const RunResult& result, const Snapshot& snapshot,
-                                 const std::vector<Fault>& faults) {
-  const double spacing = result.scene.spacing;
-  const std::size_t nodes = result.positions.size() / 3;
-  double top = -std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < nodes; ++i) top = std::max(top, result.positions[3 * i + 2]);
-  std::vector<std::size_t> surface;
-  double mean_y = 0;
-  for (std::size_t i = 0; i < nodes; ++i) {
-    if (result.positions[3 * i + 2] >= top - spacing / 2) {
-      surface.push_back(i);
-      mean_y += result.positions[3 * i + 1];
-    }
-  }
-  if (surface.empty()) return {};
-  mean_y /= static_cast<double>(surface.size());
-
-  std::vector<std::size_t> candidates;
-  for (std::size_t f = 0; f < faults.size(); ++f) {
-    if (bounds_graben(faults[f])) candidates.push_back(f);
-  }
-  std::sort(candidates.begin(), candidates.end(), [&](std::size_t a, std::size_t b) {
-    return trace_x(faults[a], mean_y, top) < trace_x(faults[b], mean_y, top);
-  });
-
-  std::vector<Graben> grabens;
-  for (std::size_t k = 0; k + 1 < candidates.size(); ++k) {
-    const Fault& left = faults[candidates[k]];
-    const Fault& right = faults[candidates[k + 1]];
-    if (left.dip_direction != 1 || right.dip_direction != -1) continue;
-    Graben graben;
-    graben.left_fault = candidates[k];
-    graben.right_fault = candidates[k + 1];
-    graben.left_surface_x = trace_x(left, mean_y, top);
-    graben.right_surface_x = trace_x(right, mean_y, top);
-    // Both traces descend inwards, so they meet below the surface at depth d where their
-    // horizontal gap closes: gap = d (cot dip_left + cot dip_right) in the x-z section.
-    const double closing =
-        left.normal[2] / std::abs(left.normal[0]) + right.normal[2] / std::abs(right.normal[0]);
-    graben.apex_depth = (graben.right_surface_x - graben.left_surface_x) / closing;
-    // The faults must lie above the point where their traces meet. Two faults below it, such
-    // as the arms of an inverted V, dip away from each other where they exist: no graben.
-    const double apex_z = top - graben.apex_depth;
-    if (!(left.centroid[2] > apex_z && right.centroid[2] > apex_z)) continue;
-
-    double inside_sum = 0, outside_sum = 0;
-    std::int64_t inside = 0, outside = 0;
-    for (const std::size_t i : surface) {
-      const double x = result.positions[3 * i];
-      const double y = result.positions[3 * i + 1];
-      const double z = result.positions[3 * i + 2];
-      const double x_left = trace_x(left, y, z);
-      const double x_right = trace_x(right, y, z);
-      const double uz = snapshot.displacement[3 * i + 2];
-      if (x > x_left + spacing && x < x_right - spacing) {
-        inside_sum += uz;
-        ++inside;
-      } else if (x < x_left - spacing || x > x_right + spacing) {
-        outside_sum += uz;
-        ++outside;
-      }
-    }
-    graben.surface_subsidence = inside > 0 && outside > 0
-                                    ? outside_sum / outside - inside_sum / inside
-                                    : std::numeric_limits<double>::quiet_NaN();
-    grabens.push_back(graben);
-  }
-  return grabens;
+  return box;
 }
 
 }  // namespace
+
+const char* to_string(FaultRole role) {
+  switch (role) {
+    case FaultRole::graben:
+      return "graben";
+    case FaultRole::precut:
+      return "precut";
+    case FaultRole::wall:
+      return "wall";
+    case FaultRole::other:
+      return "other";
+  }
+  return "?";
+}
 
 FaultReport analyze_faults(const RunResult& result, std::size_t index,
                            const FaultOptions& options) {
@@ -202,19 +137,27 @@ FaultReport analyze_faults(const RunResult& result, std::size_t index,
   report.lambda = snapshot.lambda;
   const std::vector<std::int8_t> modes = break_modes(result);
   std::vector<std::int64_t> broken;
-  std::vector<Point> midpoints;
+  std::vector<Point> midpoints, precut_midpoints;
   for (std::size_t b = 0; b < snapshot.bond_intact.size(); ++b) {
-    if (snapshot.bond_intact[b] != 0 || modes[b] == 2) continue;
+    if (snapshot.bond_intact[b] != 0) continue;
+    Point midpoint = 0.5 * (node_position(result, result.bonds[2 * b]) +
+                            node_position(result, result.bonds[2 * b + 1]));
+    if (dim == 2) midpoint.y() = 0;
+    if (modes[b] == 2) {
+      precut_midpoints.push_back(midpoint);
+      continue;
+    }
     broken.push_back(static_cast<std::int64_t>(b));
-    midpoints.push_back(0.5 * (node_position(result, result.bonds[2 * b]) +
-                               node_position(result, result.bonds[2 * b + 1])));
-    if (dim == 2) midpoints.back().y() = 0;
+    midpoints.push_back(midpoint);
   }
   report.broken_bonds = static_cast<std::int64_t>(broken.size());
+  report.precut_bonds = static_cast<std::int64_t>(precut_midpoints.size());
 
   const double spacing = result.scene.spacing;  // m
-  const LinkGrid grid(midpoints, options.link_distance_spacings * spacing);
-  const FaultFitter fitter(dim, options, spacing, lattice_size(result));
+  const double link = options.link_distance_spacings * spacing;
+  const LinkGrid grid(midpoints, link);
+  const Box box = lattice_box(result);
+  const FaultFitter fitter(dim, options, spacing, box.high - box.low);
   for (const std::vector<std::size_t>& cluster :
        link_components(grid, std::vector<int>(midpoints.size(), 0))) {
     if (static_cast<std::int64_t>(cluster.size()) < options.min_bonds) continue;
@@ -231,6 +174,9 @@ FaultReport analyze_faults(const RunResult& result, std::size_t index,
       Fault fault = fitter.fit(points);
       fault.tensile_share = static_cast<double>(tensile) / static_cast<double>(part.size());
       fault.shear_share = static_cast<double>(shear) / static_cast<double>(part.size());
+      fault.wall_share =
+          wall_share(points, box.low.x(), box.high.x(), options.wall_distance_spacings * spacing);
+      fault.precut_distance = precut_distance(points, precut_midpoints);
       report.faults.push_back(fault);
     }
   }
@@ -238,7 +184,8 @@ FaultReport analyze_faults(const RunResult& result, std::size_t index,
     if (a.bonds != b.bonds) return a.bonds > b.bonds;
     return a.centroid < b.centroid;
   });
-  report.grabens = find_grabens(result, snapshot, report.faults);
+  report.grabens = find_grabens(result, snapshot, report.faults, options);
+  assign_roles(report, options, link);
   return report;
 }
 

@@ -29,6 +29,81 @@ std::string dip_direction_text(int direction) {
   return direction > 0 ? "+x" : direction < 0 ? "-x" : "-";
 }
 
+std::string json_side(int direction) {
+  if (direction == 0) return "null";
+  std::string side = "\"";
+  side += dip_direction_text(direction);
+  side += '"';
+  return side;
+}
+
+// "2 (dips to +x, dip 60.3, alpha 29.7)": a fault by its table number.
+std::string fault_text(const FaultReport& report, std::size_t f) {
+  const Fault& fault = report.faults[f];
+  return format("%zu (dips to %s, dip %.1f, alpha %.1f)", f + 1,
+                dip_direction_text(fault.dip_direction).c_str(), fault.dip_deg, fault.alpha_deg);
+}
+
+// The graben's faults, the pre-cut fault and the wall faults, a line each.
+std::string roles_text(const FaultReport& report) {
+  std::string text = "\nThe faults that matter (roles: docs/fault-analysis.md)\n  graben: ";
+  if (report.graben) {
+    const Graben& graben = report.grabens[*report.graben];
+    text += "faults " + fault_text(report, graben.left_fault) + " and " +
+            fault_text(report, graben.right_fault) +
+            format("; subsidence %.5g m\n", graben.surface_subsidence);
+  } else {
+    text += "none\n";
+  }
+  text += "  pre-cut fault: ";
+  if (report.precut_fault) {
+    text += fault_text(report, *report.precut_fault);
+    if (report.faults[*report.precut_fault].role == FaultRole::graben)
+      text += ", also a graben fault";
+    text += "\n";
+  } else {
+    text += report.precut_bonds == 0 ? "none (the run has no pre-cut)\n"
+                                     : "none (no fault reaches the pre-cut)\n";
+  }
+  std::string walls;
+  for (std::size_t f = 0; f < report.faults.size(); ++f)
+    if (report.faults[f].role == FaultRole::wall)
+      walls += (walls.empty() ? "" : ", ") + std::to_string(f + 1);
+  return text + "  wall faults: " + (walls.empty() ? "none" : walls) + "\n";
+}
+
+// {"fault": 1, "side": "+x", "dip_deg": 60.3, "alpha_deg": 29.7 (no closing brace).
+std::string json_fault_angles(const FaultReport& report, std::size_t f) {
+  const Fault& fault = report.faults[f];
+  return "{\"fault\": " + std::to_string(f) + ", \"side\": " + json_side(fault.dip_direction) +
+         ", \"dip_deg\": " + json_number(fault.dip_deg) +
+         ", \"alpha_deg\": " + json_number(fault.alpha_deg);
+}
+
+std::string json_roles(const FaultReport& report) {
+  std::string json =
+      ", \"precut_bonds\": " + std::to_string(report.precut_bonds) + ", \"graben\": ";
+  if (report.graben) {
+    const Graben& graben = report.grabens[*report.graben];
+    json += "{\"index\": " + std::to_string(*report.graben) + ", \"faults\": [" +
+            json_fault_angles(report, graben.left_fault) + "}, " +
+            json_fault_angles(report, graben.right_fault) +
+            "}], \"subsidence_m\": " + json_number(graben.surface_subsidence) + "}";
+  } else {
+    json += "null";
+  }
+  json += ", \"precut_fault\": ";
+  if (report.precut_fault) {
+    const Fault& fault = report.faults[*report.precut_fault];
+    json += json_fault_angles(report, *report.precut_fault) + ", \"role\": \"" +
+            to_string(fault.role) + "\", \"distance_m\": " + json_number(fault.precut_distance) +
+            "}";
+  } else {
+    json += "null";
+  }
+  return json;
+}
+
 }  // namespace
 
 std::string to_text(const FaultReport& report) {
@@ -41,16 +116,18 @@ std::string to_text(const FaultReport& report) {
   text +=
       "dip: from horizontal; alpha = 90 - dip: to the vertical (sigma1); "
       "dips to: the side the fault descends towards\n";
-  text += format("%4s %8s %8s %6s %6s %6s %7s %11s %9s %11s", "#", "bonds", "tensile", "shear",
-                 "dip", "alpha", "dips to", three_d ? "area m^2" : "length m", "rms m", "x m");
+  text +=
+      format("%4s %6s %8s %8s %6s %6s %6s %7s %11s %9s %11s", "#", "role", "bonds", "tensile",
+             "shear", "dip", "alpha", "dips to", three_d ? "area m^2" : "length m", "rms m", "x m");
   if (three_d) text += format(" %11s", "y m");
   text += format(" %11s\n", "z m");
   for (std::size_t f = 0; f < report.faults.size(); ++f) {
     const Fault& fault = report.faults[f];
-    text += format("%4zu %8lld %8.2f %6.2f %6.1f %6.1f %7s %11.4g %9.3g %11.5g", f + 1,
-                   static_cast<long long>(fault.bonds), fault.tensile_share, fault.shear_share,
-                   fault.dip_deg, fault.alpha_deg, dip_direction_text(fault.dip_direction).c_str(),
-                   fault.extent, fault.fit_rms, fault.centroid[0]);
+    text += format("%4zu %6s %8lld %8.2f %6.2f %6.1f %6.1f %7s %11.4g %9.3g %11.5g", f + 1,
+                   to_string(fault.role), static_cast<long long>(fault.bonds), fault.tensile_share,
+                   fault.shear_share, fault.dip_deg, fault.alpha_deg,
+                   dip_direction_text(fault.dip_direction).c_str(), fault.extent, fault.fit_rms,
+                   fault.centroid[0]);
     if (three_d) text += format(" %11.5g", fault.centroid[1]);
     text += format(" %11.5g", fault.centroid[2]);
     if (fault.diffuse)
@@ -58,7 +135,7 @@ std::string to_text(const FaultReport& report) {
                      fault.variance_ratio, fault.fit_rms, fault.fill_share);
     text += "\n";
   }
-  if (report.grabens.empty()) return text;
+  if (report.grabens.empty()) return text + roles_text(report);
 
   text += "\nGrabens (subsidence: surface outside minus between the faults; positive: down)\n";
   text += format("%6s %6s %13s %13s %13s %15s\n", "left", "right", "left x m", "right x m",
@@ -68,7 +145,7 @@ std::string to_text(const FaultReport& report) {
                    graben.right_fault + 1, graben.left_surface_x, graben.right_surface_x,
                    graben.apex_depth, graben.surface_subsidence);
   }
-  return text;
+  return text + roles_text(report);
 }
 
 std::string to_json(const FaultReport& report) {
@@ -91,7 +168,10 @@ std::string to_json(const FaultReport& report) {
             ", \"fit_rms\": " + json_number(fault.fit_rms) +
             ", \"variance_ratio\": " + json_number(fault.variance_ratio) +
             ", \"fill_share\": " + json_number(fault.fill_share) +
-            ", \"diffuse\": " + (fault.diffuse ? "true" : "false") + "}";
+            ", \"diffuse\": " + (fault.diffuse ? "true" : "false") +
+            ", \"wall_share\": " + json_number(fault.wall_share) +
+            ", \"precut_distance\": " + json_number(fault.precut_distance) + ", \"role\": \"" +
+            to_string(fault.role) + "\"}";
   }
   json += "], \"grabens\": [";
   for (std::size_t g = 0; g < report.grabens.size(); ++g) {
@@ -104,7 +184,9 @@ std::string to_json(const FaultReport& report) {
             ", \"apex_depth\": " + json_number(graben.apex_depth) +
             ", \"surface_subsidence\": " + json_number(graben.surface_subsidence) + "}";
   }
-  json += "]}";
+  json += ']';
+  json += json_roles(report);
+  json += '}';
   return json;
 }
 

@@ -16,14 +16,21 @@
 // reported and flagged `diffuse`, never taken for a fault. A cluster that one line or
 // plane does not fit but several do, such as two faults meeting in a V, is split into its
 // straight parts (k-lines or k-planes, recursively), each reported as a fault; a shattered
-// region does not split into faults and stays one diffuse cluster. docs/fault-analysis.md
-// gives the method, the splitting rule, the units and sign conventions, and the graben rule.
+// region does not split into faults and stays one diffuse cluster.
+//
+// Each fault then gets a role: one of the two faults of the graben (the pair bounding the
+// block that subsided most), the fault through or from the tip of the pre-cut, a wall fault
+// (one lying along a side wall, where the loading holds the body), or other. A run's
+// headline angles are the graben's and the pre-cut fault's, not the largest cluster's,
+// which is often a wall fault. docs/fault-analysis.md gives the method, the splitting
+// rule, the units and sign conventions, the graben rule and the role rule.
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,7 +53,17 @@ struct FaultOptions {
   // for a split into straight faults (two faults that touch: a V, a Y, a zigzag).
   double split_rms_spacings = 1.5;
   int max_split_depth = 3;  // levels of dividing a cluster into parts; 0: never split
+  // A fault with at least wall_share of its points within wall_distance_spacings of a side
+  // wall (x = min or max of the lattice) lies along that wall: role "wall".
+  double wall_distance_spacings = 3.0;
+  double wall_share = 0.5;
 };
+
+// What a fault is in the run (docs/fault-analysis.md, "Roles"). A fault that is both a
+// graben fault and the pre-cut fault has the role graben; FaultReport::precut_fault still
+// points to it.
+enum class FaultRole { graben, precut, wall, other };
+const char* to_string(FaultRole role);
 
 struct Fault {
   std::int64_t bonds = 0;                     // broken bonds in the cluster
@@ -67,6 +84,12 @@ struct Fault {
   // cluster that fills the lattice across (a shattered thin slab).
   double fill_share = 0;
   bool diffuse = false;  // too round, too thick or filling the lattice (FaultOptions): not a fault
+  // Share of its points within FaultOptions::wall_distance_spacings of a side wall.
+  double wall_share = 0;
+  // m: the distance from its nearest point to the nearest pre-cut bond's midpoint; +inf when
+  // the run has no pre-cut.
+  double precut_distance = std::numeric_limits<double>::infinity();
+  FaultRole role = FaultRole::other;
 };
 
 struct Graben {
@@ -84,6 +107,11 @@ struct FaultReport {
   std::int64_t broken_bonds = 0;  // pre-cuts excluded
   std::vector<Fault> faults;      // largest first
   std::vector<Graben> grabens;    // ordered by left_surface_x
+  std::int64_t precut_bonds = 0;  // bonds a pre-cut broke (break events of mode 2)
+  // Index into grabens of the graben: the one whose block subsided most; empty when none.
+  std::optional<std::size_t> graben;
+  // Index into faults of the fault through or from the tip of the pre-cut; empty when none.
+  std::optional<std::size_t> precut_fault;
 };
 
 inline constexpr std::size_t kLastSnapshot = std::numeric_limits<std::size_t>::max();
