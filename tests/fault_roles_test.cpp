@@ -1,5 +1,4 @@
-// Fault roles: hand-placed graben, pre-cut and wall faults come out with their roles, dips and
-// sides.
+// Fault roles: hand-placed graben, pre-cut and wall faults give their roles, dips and sides.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
@@ -13,72 +12,11 @@ using namespace latfrac::testing;
 
 namespace {
 
-// The fitted dip of a band of bonds within half a spacing of a line: its midpoints scatter
-// about sigma = 0.3 spacings across the line, systematically (the lattice's staircase), over a
-// length L of 20 to 35 spacings with n = 2 L points. The direction's standard error
-// sigma sqrt(12) / (L sqrt(n)) is below 0.4 deg for L = 20; a systematic staircase is
-// not averaged away as a random one would be, so the tests allow 1 deg, as for the analysis's
-// other tests (docs/fault-analysis.md, "Limitations").
-constexpr double kDipToleranceDeg = 1.0;
-
-// The layout below, in a lattice 80 m wide (x = 0 .. 80) and 34.6 m high (41 rows).
-constexpr int kColumns = 81, kRows = 41;
-constexpr double kWidth = kColumns - 1;
+constexpr int kColumns = kGrabenColumns, kRows = kGrabenRows;
+constexpr double kWidth = kGrabenWidth;
 constexpr double kLeftDip = 55, kRightDip = 65;  // the graben's arms, deg
-constexpr double kCutX = 50.25, kCutDepth = 6;   // the pre-cut, m
 
-struct Layout {
-  RunResult result;
-  std::size_t wall = 0, graben = 0, precut = 0, other = 0;  // bonds broken for each
-};
-
-// A wall fault along the left wall (the bonds within 1.4 m of it, the whole height), a
-// vertical pre-cut 6 m deep at x = 50.25 (break events of mode 2), a V graben whose left arm
-// leaves the surface at x = 20 dipping 55 deg towards +x and whose right arm leaves the
-// pre-cut's tip dipping 65 deg towards -x, the block between them lowered by 10 m, and a
-// short vertical fault at x = 68. `mirrored`: the same reflected about x = 40 (the lattice is
-// symmetric about it).
-Layout graben_layout(bool mirrored) {
-  Layout layout{triangular(kColumns, kRows, true)};
-  RunResult& result = layout.result;
-  const double top = top_z(result), tip_z = top - kCutDepth;
-  const double left_cot = 1 / std::tan(kLeftDip * kDegree);
-  const double right_cot = 1 / std::tan(kRightDip * kDegree);
-  // The arms meet at depth d below the surface: 20 + d cot55 = 50.25 - (d - 6) cot65.
-  const double apex_depth = (kCutX - 20 + kCutDepth * right_cot) / (left_cot + right_cot);
-  const double apex_x = 20 + apex_depth * left_cot, apex_z = top - apex_depth;
-  auto mirror = [&](double x) { return mirrored ? kWidth - x : x; };
-  auto in_layout = [&](auto select) {
-    return [=](Xyz m) {
-      m[0] = mirror(m[0]);
-      return select(m);
-    };
-  };
-  const auto precut = break_where(result, in_layout([&](const Xyz& m) {
-                                    return std::abs(m[0] - kCutX) < 0.3 && m[2] > tip_z;
-                                  }));
-  add_events(result, precut, 2);
-  layout.precut = precut.size();
-  layout.wall = break_where(result, in_layout([](const Xyz& m) { return m[0] < 1.4; })).size();
-  layout.graben =
-      break_where(result, in_layout([&](const Xyz& m) {
-                    return distance_to_segment(m, {20, top}, {apex_x, apex_z}) < 0.5 ||
-                           distance_to_segment(m, {kCutX, tip_z}, {apex_x, apex_z}) < 0.5;
-                  }))
-          .size();
-  layout.other = break_where(result, in_layout([](const Xyz& m) {
-                               return std::abs(m[0] - 68.2) < 0.5 && m[2] > 5 && m[2] < 20;
-                             }))
-                     .size();
-  auto& displacement = result.snapshots.back().displacement;
-  for (std::size_t i = 0; i < result.node_count(); ++i) {
-    const double x = mirror(result.positions[3 * i]), z = result.positions[3 * i + 2];
-    const bool block =
-        z > apex_z && x > 20 + (top - z) * left_cot && x < kCutX + (z - tip_z) * right_cot;
-    if (block) displacement[3 * i + 2] = -10.0;
-  }
-  return layout;
-}
+Layout graben_layout(bool mirrored) { return graben_with_precut(kLeftDip, kRightDip, mirrored); }
 
 std::size_t count_role(const FaultReport& report, FaultRole role) {
   return std::count_if(report.faults.begin(), report.faults.end(),

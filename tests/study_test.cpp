@@ -111,7 +111,13 @@ TEST_CASE("A study's rows match errors computed from the runs themselves", "[stu
                                         "first_break_lambda",
                                         "first_break_error",
                                         "broken_set_difference",
-                                        "fault_angle",
+                                        "graben_left_alpha",
+                                        "graben_right_alpha",
+                                        "precut_alpha",
+                                        "precut_side",
+                                        "graben_left_difference",
+                                        "graben_right_difference",
+                                        "precut_difference",
                                         "wall_seconds",
                                         "solves",
                                         "note"};
@@ -119,9 +125,10 @@ TEST_CASE("A study's rows match errors computed from the runs themselves", "[stu
   for (std::size_t r = 1; r < csv.size(); ++r) {
     REQUIRE(csv[r].size() == header.size());
     CHECK(csv[r][3] == "ok");
-    CHECK(csv[r][8] == "");  // fault angle: not yet
-    CHECK(std::stod(csv[r][9]) > 0);
-    CHECK(std::stoll(csv[r][10]) > 0);
+    // The strip has no pre-cut: no pre-cut fault, nothing to compare it with.
+    for (const std::size_t c : {10, 11, 14}) CHECK(csv[r][c] == "");
+    CHECK(std::stod(csv[r][15]) > 0);
+    CHECK(std::stoll(csv[r][16]) > 0);
   }
   CHECK(csv[1][0] == "reference");
   CHECK(csv[1][1] == "fixed");
@@ -252,8 +259,9 @@ TEST_CASE("The reading names the largest increment that matches the reference", 
   study.rows.push_back(made_row("fixed", 1e-3, 0, 5, 400));
   study.rows.push_back(made_row("fixed", 1e-4, 0, 20, 2000));
   auto reading = study_interpretation(study);
-  REQUIRE(reading.size() == 2);
+  REQUIRE(reading.size() == 3);
   CHECK_THAT(reading[0], Contains("exactly is fixed ds=1e-3"));
+  CHECK_THAT(reading[2], Contains("the reference has no graben and no pre-cut fault"));
   CHECK_THAT(reading[1], Contains("5 s and 400 solves") &&
                              Contains("0.5 times the reference's wall time (10 s)") &&
                              Contains("0.4 times its solves (1000)"));

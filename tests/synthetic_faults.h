@@ -132,4 +132,71 @@ inline void add_events(RunResult& result, const std::vector<std::int64_t>& bonds
     result.events.push_back({0.01, b, 1.0, static_cast<BreakMode>(mode), 0});
 }
 
+// The fitted dip of a band of bonds within half a spacing of a line: its midpoints scatter
+// about sigma = 0.3 spacings across the line, systematically (the lattice's staircase), over a
+// length L of 20 to 35 spacings with n = 2 L points. Were the scatter random, the direction's
+// standard error sigma sqrt(12) / (L sqrt(n)) would be 0.5 deg for L = 20 and 0.2 deg for
+// L = 35. The tests allow 1 deg, twice the larger, as the analysis's other tests do
+// (docs/fault-analysis.md, "Limitations").
+constexpr double kDipToleranceDeg = 1.0;
+
+// The layout of graben_with_precut: a symmetric lattice 80 m wide (x = 0 .. 80) and 34.6 m
+// high (41 rows).
+constexpr int kGrabenColumns = 81, kGrabenRows = 41;
+constexpr double kGrabenWidth = kGrabenColumns - 1;
+constexpr double kCutX = 50.25, kCutDepth = 6;  // the pre-cut, m
+
+struct Layout {
+  RunResult result;
+  std::size_t wall = 0, graben = 0, precut = 0, other = 0;  // bonds broken for each
+};
+
+// A wall fault along the left wall (the bonds within 1.4 m of it, the whole height), a
+// vertical pre-cut 6 m deep at x = 50.25 (break events of mode 2), a V graben whose left arm
+// leaves the surface at x = 20 dipping left_dip towards +x and whose right arm leaves the
+// pre-cut's tip dipping right_dip towards -x, the block between them lowered by 10 m, and a
+// short vertical fault at x = 68. `mirrored`: the same reflected about x = 40 (the lattice is
+// symmetric about it).
+inline Layout graben_with_precut(double left_dip, double right_dip, bool mirrored) {
+  Layout layout{triangular(kGrabenColumns, kGrabenRows, true)};
+  RunResult& result = layout.result;
+  const double top = top_z(result), tip_z = top - kCutDepth;
+  const double left_cot = 1 / std::tan(left_dip * kDegree);
+  const double right_cot = 1 / std::tan(right_dip * kDegree);
+  // The arms meet at depth d below the surface: 20 + d cot(left) = 50.25 - (d - 6) cot(right).
+  const double apex_depth = (kCutX - 20 + kCutDepth * right_cot) / (left_cot + right_cot);
+  const double apex_x = 20 + apex_depth * left_cot, apex_z = top - apex_depth;
+  auto mirror = [&](double x) { return mirrored ? kGrabenWidth - x : x; };
+  auto in_layout = [&](auto select) {
+    return [=](Xyz m) {
+      m[0] = mirror(m[0]);
+      return select(m);
+    };
+  };
+  const auto precut = break_where(result, in_layout([&](const Xyz& m) {
+                                    return std::abs(m[0] - kCutX) < 0.3 && m[2] > tip_z;
+                                  }));
+  add_events(result, precut, 2);
+  layout.precut = precut.size();
+  layout.wall = break_where(result, in_layout([](const Xyz& m) { return m[0] < 1.4; })).size();
+  layout.graben =
+      break_where(result, in_layout([&](const Xyz& m) {
+                    return distance_to_segment(m, {20, top}, {apex_x, apex_z}) < 0.5 ||
+                           distance_to_segment(m, {kCutX, tip_z}, {apex_x, apex_z}) < 0.5;
+                  }))
+          .size();
+  layout.other = break_where(result, in_layout([](const Xyz& m) {
+                               return std::abs(m[0] - 68.2) < 0.5 && m[2] > 5 && m[2] < 20;
+                             }))
+                     .size();
+  auto& displacement = result.snapshots.back().displacement;
+  for (std::size_t i = 0; i < result.node_count(); ++i) {
+    const double x = mirror(result.positions[3 * i]), z = result.positions[3 * i + 2];
+    const bool block =
+        z > apex_z && x > 20 + (top - z) * left_cot && x < kCutX + (z - tip_z) * right_cot;
+    if (block) displacement[3 * i + 2] = -10.0;
+  }
+  return layout;
+}
+
 }  // namespace latfrac::testing

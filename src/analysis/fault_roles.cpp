@@ -1,5 +1,4 @@
-// The roles of a run's faults: which bound the graben, which starts at the pre-cut, which hug a
-// wall.
+// The roles of a run's faults: the graben's two, the pre-cut fault, the wall faults.
 #include "fault_roles.h"
 
 #include <algorithm>

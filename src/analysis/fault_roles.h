@@ -1,5 +1,4 @@
-// The roles of a run's faults: the graben's two, the pre-cut fault, wall faults
-// (docs/fault-analysis.md).
+// The roles of a run's faults: the graben's two, the pre-cut fault, wall faults.
 #pragma once
 
 #include <Eigen/Core>
