@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <optional>
 
 #include "latfrac/base/error.h"
 #include "latfrac/analysis/fault_analysis.h"
@@ -60,12 +61,14 @@ int run_command(const std::string& problem, const std::vector<std::string>& sets
   const std::string h5 = base.string() + ".h5";
   write_result_file(h5, result);
   write_xdmf(base.string() + ".xmf", fs::path(h5).filename().string(), result);
-  if (scene.output.picture) render_png(result, result.snapshots.size() - 1, base.string() + ".png");
+  const std::string picture = base.string() + "." + scene.output.picture_format;
+  if (scene.output.picture)
+    render_picture(result, result.snapshots.size() - 1, picture, scene.output.picture_options);
 
   // 4. The summary.
   if (!quiet) {
     std::cout << summary_text(result) << "  wrote " << h5 << ", " << base.string() << ".xmf"
-              << (scene.output.picture ? ", " + base.string() + ".png" : "") << "\n";
+              << (scene.output.picture ? ", " + picture : "") << "\n";
   }
   return 0;
 }
@@ -145,15 +148,42 @@ int analyze_command(const std::string& path, bool json, double lambda) {
   return 0;
 }
 
-int render_command(const std::string& path, double lambda, const std::string& png, int width,
-                   double exaggeration) {
-  const RunResult result = read_result_file(path);
-  RenderOptions options;
+// The render options given by name on the command line.
+struct RenderNames {
+  std::string view = "section", style = "cracks", field = "none";
+  std::optional<double> section_y, section_x;
+};
+
+template <class Enum>
+Enum named_option(std::optional<Enum> (*lookup)(std::string_view), const std::string& option,
+                  const std::string& name, const std::vector<std::string_view>& names) {
+  if (const std::optional<Enum> value = lookup(name)) return *value;
+  throw InputError(option + " \"" + name + "\" is not known; allowed: " + list_of_names(names));
+}
+
+PictureOptions picture_options(const RenderNames& names, int width, double exaggeration,
+                               bool faults) {
+  PictureOptions options;
+  options.view = named_option(picture_view_named, "--view", names.view, picture_view_names());
+  options.style = named_option(crack_style_named, "--style", names.style, crack_style_names());
+  options.field = named_option(node_field_named, "--field", names.field, node_field_names());
+  options.faults = faults;
   options.width = width;
   options.exaggeration = exaggeration;
+  if (names.section_y && names.section_x)
+    throw InputError("--section-y and --section-x: give one of the two");
+  if (names.section_x) options.section_axis = SectionAxis::x;
+  options.section_at = names.section_x ? names.section_x : names.section_y;
+  return options;
+}
+
+int render_command(const std::string& path, double lambda, const std::string& picture,
+                   const PictureOptions& options) {
+  picture_format_of(picture);  // an unsupported extension is refused before reading
+  const RunResult result = read_result_file(path);
   const std::size_t index = snapshot_nearest(result, lambda);
-  render_png(result, index, png, options);
-  std::cout << "wrote " << png << " (lambda " << result.snapshots[index].lambda << ")\n";
+  render_picture(result, index, picture, options);
+  std::cout << "wrote " << picture << " (lambda " << result.snapshots[index].lambda << ")\n";
   return 0;
 }
 
@@ -213,15 +243,27 @@ int main(int argc, char** argv) {
   analyze->add_flag("--json", json, "machine-readable output");
   analyze->add_option("--lambda", lambda, "the snapshot nearest this lambda (default: the last)");
 
-  auto* render = app.add_subcommand("render", "draw a result's cross-section as a PNG");
+  RenderNames names;
+  bool faults = false;
+  auto* render = app.add_subcommand("render", "draw a snapshot as a PNG, SVG or PDF picture");
   render->add_option("result", result_path, "a result file (.h5)")
       ->required()
       ->check(CLI::ExistingFile);
   render->add_option("--lambda", lambda, "the snapshot nearest this lambda (default: the last)");
-  render->add_option("-o,--output", png, "the PNG file to write")->required();
+  render->add_option("-o,--output", png, "the picture to write: FILE.png, FILE.svg or FILE.pdf")
+      ->required();
   render->add_option("--width", width, "picture width in pixels")->check(CLI::Range(200, 20000));
   render->add_option("--exaggeration", exaggeration,
                      "displacement magnification (default: the scene's)");
+  render->add_option("--view", names.view, "section, map (3-D) or oblique (3-D); default section");
+  render->add_option("--style", names.style,
+                     "cracks (broken bonds coloured by mode) or particles (the paper's red "
+                     "particles); default cracks");
+  render->add_option("--field", names.field,
+                     "colour the nodes by: " + list_of_names(node_field_names()));
+  render->add_flag("--faults", faults, "draw the fitted faults (alpha, dip) and grabens");
+  render->add_option("--section-y", names.section_y, "3-D: the section at this y, m");
+  render->add_option("--section-x", names.section_x, "3-D: the section at this x, m");
 
   try {
     app.parse(argc, argv);
@@ -240,7 +282,9 @@ int main(int argc, char** argv) {
       return study_command(problem, sets, increments, out_dir, relaxation, quiet, force,
                            joined(argc, argv));
     if (*analyze) return analyze_command(result_path, json, lambda);
-    if (*render) return render_command(result_path, lambda, png, width, exaggeration);
+    if (*render)
+      return render_command(result_path, lambda, png,
+                            picture_options(names, width, exaggeration, faults));
     std::cout << app.help();
     return 2;
   } catch (const InputError& e) {

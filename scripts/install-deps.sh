@@ -13,7 +13,9 @@ packages=(
   catch2                     # unit tests (v2)
   libtomlplusplus-dev        # problem files
   libcli11-dev               # command line
-  libpng-dev                 # pictures
+  libcairo2-dev              # pictures: PNG, SVG and PDF (Cairo)
+  fonts-dejavu-core          # the pictures' font (DejaVu Sans)
+  libexpat1-dev              # the picture tests parse the SVG files
   mpi-default-dev            # SUNDIALS' CMake config asks for MPI
   python3                    # the CLI tests validate JSON output with it
 )

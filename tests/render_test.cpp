@@ -1,239 +1,239 @@
-// Tests of the cross-section pictures: size, red exactly at broken bonds, 3-D slice, I/O.
+// Tests of section pictures: broken bonds in their mode's colour where they are, the paper's
+// particles, formats by extension (SVG paths, PDF header), bad options and failed writes.
 #include "latfrac/render/render.h"
 
-#include <png.h>
-#include <unistd.h>
+#include <expat.h>
 
 #include <catch2/catch.hpp>
-#include <cmath>
-#include <filesystem>
-#include <limits>
-#include <set>
-#include <string>
-#include <vector>
+#include <fstream>
+#include <map>
+#include <sstream>
 
-#include "bitmap_font.h"
+#include "colour_map.h"
 #include "latfrac/base/error.h"
-#include "raster.h"
+#include "render_scenes.h"
 
 namespace fs = std::filesystem;
 using namespace latfrac;
+using namespace latfrac::testing;
 
 namespace {
 
-constexpr double spacing = 1000.0;  // m
+Rgb rgb(Colour c) { return {c.r, c.g, c.b}; }
 
-struct Image {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;
+// Where the point (h, v) of the picture plane lands: the frame shows the window, linearly.
+std::array<double, 2> pixel_in_frame(const PictureReport& report, double h, double v) {
+  const auto& f = report.frame;
+  const auto& w = report.window;
+  return {f[0] + (h - w[0]) / (w[1] - w[0]) * (f[2] - f[0]),
+          f[3] - (v - w[2]) / (w[3] - w[2]) * (f[3] - f[1])};
+}
 
-  const std::uint8_t* at(int x, int y) const { return &rgb[(std::size_t(y) * width + x) * 3]; }
-};
+Rgb colour_at(const Image& image, const PictureReport& report, double h, double v) {
+  const auto [x, y] = pixel_in_frame(report, h, v);
+  return image.at_point(x, y);
+}
 
-Image read_png(const std::string& path) {
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  REQUIRE(png_image_begin_read_from_file(&image, path.c_str()) != 0);
-  image.format = PNG_FORMAT_RGB;
-  Image result{static_cast<int>(image.width), static_cast<int>(image.height),
-               std::vector<std::uint8_t>(PNG_IMAGE_SIZE(image))};
-  REQUIRE(png_image_finish_read(&image, nullptr, result.rgb.data(), 0, nullptr) != 0);
+// A patch with a tensile, a shear and a pre-cut bond broken, far from each other.
+RunResult patch_with_three_modes(std::size_t bonds[3]) {
+  RunResult result = triangular_patch();
+  bonds[0] = break_bond(result, 12, 13, 0);  // (2, 1)-(3, 1)
+  bonds[1] = break_bond(result, 36, 37, 1);  // (6, 3)-(7, 3)
+  bonds[2] = break_bond(result, 48, 49, 2);  // (8, 4)-(9, 4)
   return result;
 }
 
-struct Box {
-  int x0 = std::numeric_limits<int>::max(), y0 = x0, x1 = -1, y1 = -1;
-  long pixels = 0;
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
-  void add(int x, int y) {
-    x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
-    ++pixels;
+// The <path> elements of an SVG, counted by stroke colour (as 0-255 channels).
+struct SvgPaths {
+  std::map<std::array<int, 3>, int> strokes;
+  int elements = 0;
+};
+
+void XMLCALL on_element(void* data, const XML_Char* name, const XML_Char** attributes) {
+  SvgPaths& paths = *static_cast<SvgPaths*>(data);
+  if (std::string(name) != "path") return;
+  ++paths.elements;
+  for (int i = 0; attributes[i]; i += 2) {
+    const std::string value = attributes[i + 1];
+    const std::size_t at = value.find("stroke:rgb(");
+    if (std::string(attributes[i]) != "style" || at == std::string::npos) continue;
+    double r = 0, g = 0, b = 0;
+    REQUIRE(std::sscanf(value.c_str() + at, "stroke:rgb(%lf%%,%lf%%,%lf%%)", &r, &g, &b) == 3);
+    ++paths.strokes[{static_cast<int>(std::lround(r * 2.55)), static_cast<int>(std::lround(g * 2.55)),
+                     static_cast<int>(std::lround(b * 2.55))}];
   }
-  double centre_x() const { return 0.5 * (x0 + x1); }
-  double centre_y() const { return 0.5 * (y0 + y1); }
-};
-
-bool is_red(const std::uint8_t* p) { return p[0] > 180 && p[1] < 80 && p[2] < 80; }
-// The dots' grey, told apart from the near-black of frame and text.
-bool is_node_grey(const std::uint8_t* p) {
-  return p[0] == p[1] && p[1] == p[2] && p[0] > 60 && p[0] < 160;
 }
 
-Box box_of(const Image& image, bool (*wanted)(const std::uint8_t*)) {
-  Box box;
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x)
-      if (wanted(image.at(x, y))) box.add(x, y);
-  return box;
-}
-
-// Nearest-neighbour bonds (reference length within 1% of the spacing).
-void add_nearest_bonds(RunResult& result) {
-  const std::size_t n = result.node_count();
-  for (std::size_t a = 0; a < n; ++a)
-    for (std::size_t b = a + 1; b < n; ++b) {
-      const double* p = &result.positions[3 * a];
-      const double* q = &result.positions[3 * b];
-      if (std::abs(std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]) - spacing) < 0.01 * spacing) {
-        result.bonds.insert(result.bonds.end(), {std::int64_t(a), std::int64_t(b)});
-        result.bond_kind.push_back(0);
-      }
-    }
-}
-
-void add_snapshot(RunResult& result, double lambda) {
-  Snapshot snapshot;
-  snapshot.lambda = lambda;
-  snapshot.displacement.assign(3 * result.node_count(), 0.0);
-  snapshot.bond_intact.assign(result.bond_count(), 1);
-  snapshot.bond_failure_index.assign(result.bond_count(), 0.0);
-  snapshot.node_stress.assign(6 * result.node_count(), 0.0);
-  result.snapshots.push_back(snapshot);
-}
-
-// A triangular patch of columns x rows nodes in the x-z plane: node (i, k) is
-// i + columns k.
-RunResult triangular_patch(int columns = 10, int rows = 6) {
-  RunResult result;
-  result.scene = {"patch-2d", 2, spacing, "elliptic", 1.0};
-  for (int k = 0; k < rows; ++k)
-    for (int i = 0; i < columns; ++i)
-      result.positions.insert(result.positions.end(), {(i + 0.5 * (k % 2)) * spacing, 0.0,
-                                                       k * spacing * std::sqrt(3.0) / 2});
-  add_nearest_bonds(result);
-  add_snapshot(result, 0.01);
-  return result;
-}
-
-// A cubic block of 10 x 3 x 6 nodes; node (i, j, k) is i + 10 j + 30 k, layer j at y = j a.
-RunResult cubic_block() {
-  RunResult result;
-  result.scene = {"block-3d", 3, spacing, "", 1.0};
-  for (int k = 0; k < 6; ++k)
-    for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 10; ++i)
-        result.positions.insert(result.positions.end(), {i * spacing, j * spacing, k * spacing});
-  add_nearest_bonds(result);
-  add_snapshot(result, 0.0);
-  return result;
-}
-
-std::size_t bond_between(const RunResult& result, std::int64_t a, std::int64_t b) {
-  for (std::size_t bond = 0; bond < result.bond_count(); ++bond)
-    if ((result.bonds[2 * bond] == a && result.bonds[2 * bond + 1] == b) ||
-        (result.bonds[2 * bond] == b && result.bonds[2 * bond + 1] == a))
-      return bond;
-  FAIL("no bond between nodes " << a << " and " << b);
-  return 0;
-}
-
-struct ScratchDir {
-  fs::path path = fs::temp_directory_path() / ("latfrac_render_test_" + std::to_string(getpid()));
-  ScratchDir() { fs::create_directories(path); }
-  ~ScratchDir() { fs::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-};
-
-Image render(const RunResult& result, const ScratchDir& dir, const RenderOptions& options = {}) {
-  const std::string path = dir.file("picture.png");
-  render_png(result, 0, path, options);
-  return read_png(path);
+SvgPaths parse_svg(const std::string& text) {
+  SvgPaths paths;
+  XML_Parser parser = XML_ParserCreate(nullptr);
+  XML_SetUserData(parser, &paths);
+  XML_SetStartElementHandler(parser, on_element);
+  const bool parsed = XML_Parse(parser, text.data(), static_cast<int>(text.size()), 1) == XML_STATUS_OK;
+  INFO("expat: " << XML_ErrorString(XML_GetErrorCode(parser)) << " at line "
+                 << XML_GetCurrentLineNumber(parser));
+  XML_ParserFree(parser);
+  REQUIRE(parsed);
+  return paths;
 }
 
 }  // namespace
 
-TEST_CASE("an intact 2-D patch has the requested width, a plausible height, no red", "[render]") {
+TEST_CASE("a broken bond's midpoint is drawn in its mode's colour, the lattice grey", "[render]") {
   ScratchDir dir;
-  const Image image = render(triangular_patch(), dir, {800, -1});
-  CHECK(image.width == 800);
-  // The patch is 9.5 a wide and 4.3 a tall: the plot is about half as tall as wide.
-  CHECK(image.height > 0.3 * image.width);
-  CHECK(image.height < 0.9 * image.width);
-  CHECK(box_of(image, is_red).pixels == 0);
-  CHECK(box_of(image, is_node_grey).pixels > 60);
-  CHECK_FALSE(fs::exists(dir.file("picture.png.partial")));
+  std::size_t bonds[3];
+  const RunResult result = patch_with_three_modes(bonds);
+  const PictureReport report = render_picture(result, 0, dir.file("cracks.png"), {.width = 800});
+  const Image image = read_png(dir.file("cracks.png"));
+  REQUIRE(image.width == 800);
+  CHECK(image.height == report.height);
+  // Equal scales on x and z.
+  CHECK((report.frame[2] - report.frame[0]) / (report.window[1] - report.window[0]) ==
+        Approx((report.frame[3] - report.frame[1]) / (report.window[3] - report.window[2])).epsilon(1e-9));
+  const Colour expected[3] = {tensile_colour, shear_colour, precut_colour};
+  for (int mode = 0; mode < 3; ++mode) {
+    const auto middle = bond_middle(result, bonds[mode]);
+    INFO("mode " << mode);
+    CHECK(colour_at(image, report, middle[0], middle[2]) == rgb(expected[mode]));
+  }
+  // A node far from every broken bond: (4, 2), at x = 4 a, z = sqrt(3) a.
+  CHECK(colour_at(image, report, 4 * render_spacing, std::sqrt(3.0) * render_spacing) ==
+        rgb(lattice_colour));
+  CHECK(report.broken_bonds_drawn == 3);
 }
 
-TEST_CASE("an intact lattice shows no white line, however small its dots", "[render]") {
+TEST_CASE("the particles style draws the nodes of broken bonds red, the others grey", "[render]") {
+  ScratchDir dir;
+  RunResult result = triangular_patch();
+  break_bond(result, 12, 13, 0);
+  PictureOptions options{.style = CrackStyle::particles};
+  options.width = 800;
+  const PictureReport report = render_picture(result, 0, dir.file("particles.png"), options);
+  const Image image = read_png(dir.file("particles.png"));
+  const double z1 = std::sqrt(3.0) / 2 * render_spacing;
+  CHECK(colour_at(image, report, 2.5 * render_spacing, z1) == rgb(broken_particle_colour));
+  CHECK(colour_at(image, report, 3.5 * render_spacing, z1) == rgb(broken_particle_colour));
+  CHECK(colour_at(image, report, 5.5 * render_spacing, z1) == rgb(particle_colour));
+  CHECK(report.broken_bonds_drawn == 0);
+}
+
+TEST_CASE("an intact lattice of particles shows no white line, however small its dots", "[render]") {
   // White inside the lattice means open bonds. With dots a few pixels apart, gaps under a
   // pixel wide once fell on the same pixel rows and drew white lines like cracks.
   ScratchDir dir;
   const RunResult result = triangular_patch(60, 40);
-  for (int width = 300; width <= 1400; width += 25) {
-    const Image image = render(result, dir, {width, -1});
-    const Box lattice = box_of(image, is_node_grey);
-    const double dot_spacing = (lattice.x1 - lattice.x0) / 59.5;  // about: dots overhang
-    // The inside: a margin of two spacings from the lattice's edges.
-    const int x0 = lattice.x0 + static_cast<int>(2 * dot_spacing),
-              x1 = lattice.x1 - static_cast<int>(2 * dot_spacing);
-    const int y0 = lattice.y0 + static_cast<int>(2 * dot_spacing),
-              y1 = lattice.y1 - static_cast<int>(2 * dot_spacing);
+  for (int width = 300; width <= 1400; width += 50) {
+    PictureOptions options{.style = CrackStyle::particles};
+    options.width = width;
+    const PictureReport report = render_picture(result, 0, dir.file("p.png"), options);
+    const Image image = read_png(dir.file("p.png"));
+    const double dot_spacing = (report.frame[2] - report.frame[0]) /
+                               (report.window[1] - report.window[0]) * render_spacing;
+    // The inside: two spacings in from the lattice's edges.
+    const auto [x0, y1] = pixel_in_frame(report, 2 * render_spacing, 2 * render_spacing);
+    const auto [x1, y0] = pixel_in_frame(report, 57 * render_spacing, 31 * render_spacing);
     int longest = 0, white = 0;
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0, run = 0; x <= x1; ++x) {
-        const bool is_white = image.at(x, y)[0] == 255 && image.at(x, y)[1] == 255;
-        run = is_white ? run + 1 : 0;
-        white += is_white;
+    for (int y = static_cast<int>(y0); y <= static_cast<int>(y1); ++y)
+      for (int x = static_cast<int>(x0), run = 0; x <= static_cast<int>(x1); ++x) {
+        run = image.at(x, y).white() ? run + 1 : 0;
+        white += run > 0;
         longest = std::max(longest, run);
       }
     INFO("width " << width << " px, dots " << dot_spacing << " px apart");
     if (dot_spacing < 9.5) {
       CHECK(white == 0);  // drawn solid
     } else if (dot_spacing > 10.5) {
-      // Particles with a gap of a pixel or more at each bond: no pixel row runs white
-      // past a whole particle.
-      CHECK(white > 0);
+      CHECK(white > 0);  // a gap at each bond, never as long as a particle
       CHECK(longest < 0.8 * dot_spacing);
     }
   }
 }
 
-TEST_CASE("nodes of a broken bond are red, where the bond is", "[render]") {
+TEST_CASE("the exaggeration moves the drawn lattice by u times the factor", "[render]") {
   ScratchDir dir;
   RunResult result = triangular_patch();
-  // Nodes (2, 1) and (3, 1): x = 2.5 a and 3.5 a of 0 .. 9.5 a, z = 0.87 a of 0 .. 4.33 a.
-  result.snapshots[0].bond_intact[bond_between(result, 12, 13)] = 0;
-  const Image image = render(result, dir);
-  const Box red = box_of(image, is_red);
-  REQUIRE(red.pixels > 0);
-  Box dots = box_of(image, is_node_grey);
-  dots.add(red.x0, red.y0), dots.add(red.x1, red.y1);
-  // Dot centres span the dots' box less one dot radius on each side.
-  const double radius = 0.5 * (red.y1 - red.y0);
-  const double fraction_x = (red.centre_x() - dots.x0 - radius) / (dots.x1 - dots.x0 - 2 * radius);
-  const double fraction_up = (dots.y1 - radius - red.centre_y()) / (dots.y1 - dots.y0 - 2 * radius);
-  CHECK(fraction_x == Approx(3.0 / 9.5).margin(0.03));
-  CHECK(fraction_up == Approx(0.2).margin(0.03));
-  // Two dots side by side: twice as wide as tall, about one spacing apart.
-  CHECK(red.x1 - red.x0 > 1.5 * (red.y1 - red.y0));
+  const std::size_t bond = break_bond(result, 0, 1, 0);  // at the left edge
+  for (std::size_t node = 0; node < result.node_count(); ++node)
+    result.snapshots[0].displacement[3 * node] = 2 * render_spacing;
+  for (const double factor : {0.0, 1.0, 2.5}) {
+    PictureOptions options;
+    options.width = 800, options.exaggeration = factor;
+    const PictureReport report = render_picture(result, 0, dir.file("e.png"), options);
+    const Image image = read_png(dir.file("e.png"));
+    const auto middle = bond_middle(result, bond);
+    INFO("exaggeration " << factor);
+    CHECK(colour_at(image, report, middle[0] + factor * 2 * render_spacing, middle[2]) ==
+          rgb(tensile_colour));
+    // The window holds the reference and the deformed lattice.
+    CHECK(report.window[0] < 0);
+    CHECK(report.window[1] > (9.5 + 2 * factor) * render_spacing);
+  }
 }
 
-TEST_CASE("a 3-D result is drawn as its middle y layer", "[render]") {
+TEST_CASE("an SVG parses as XML and holds one stroked path per broken bond", "[render]") {
   ScratchDir dir;
-  RunResult outer = cubic_block();
-  outer.snapshots[0].bond_intact[bond_between(outer, 33, 34)] = 0;  // layer y = 0
-  CHECK(box_of(render(outer, dir), is_red).pixels == 0);
+  std::size_t bonds[3];
+  RunResult result = patch_with_three_modes(bonds);
+  break_bond(result, 14, 15, 0);  // a second tensile bond
+  render_picture(result, 0, dir.file("cracks.svg"), {.width = 800});
+  const SvgPaths paths = parse_svg(read_text(dir.file("cracks.svg")));
+  auto strokes_of = [&](Colour c) {
+    const auto found = paths.strokes.find({c.r, c.g, c.b});
+    return found == paths.strokes.end() ? 0 : found->second;
+  };
+  CHECK(strokes_of(tensile_colour) == 2);
+  CHECK(strokes_of(shear_colour) == 1);
+  CHECK(strokes_of(precut_colour) == 1);
+  CHECK(paths.elements > 4);  // and the lattice, frame and text
+}
 
-  RunResult middle = cubic_block();
-  middle.snapshots[0].bond_intact[bond_between(middle, 43, 44)] = 0;  // layer y = a
-  const Image image = render(middle, dir);
-  CHECK(box_of(image, is_red).pixels > 0);
+TEST_CASE("a PDF starts with %PDF; the format follows the extension in any case", "[render]") {
+  ScratchDir dir;
+  const RunResult result = triangular_patch();
+  render_picture(result, 0, dir.file("picture.PDF"));
+  CHECK(read_text(dir.file("picture.PDF")).rfind("%PDF-", 0) == 0);
+  CHECK(picture_format_of("a.Svg") == PictureFormat::svg);
+  CHECK(picture_format_of("dir.png/a.png") == PictureFormat::png);
+}
 
-  RunResult across = cubic_block();
-  across.snapshots[0].bond_intact[bond_between(across, 33, 43)] = 0;  // y = 0 to y = a
-  CHECK(box_of(render(across, dir), is_red).pixels > 0);
+TEST_CASE("bad options are input errors and write no file", "[render]") {
+  ScratchDir dir;
+  const RunResult result = triangular_patch();
+  auto refused = [&](const std::string& name, const PictureOptions& options,
+                     const RunResult& drawn) {
+    INFO(name);
+    CHECK_THROWS_AS(render_picture(drawn, 0, dir.file(name), options), InputError);
+    CHECK_FALSE(fs::exists(dir.file(name)));
+    CHECK_FALSE(fs::exists(dir.file(name) + ".partial"));
+  };
+  refused("picture.jpg", {}, result);
+  refused("picture", {}, result);
+  refused("map.png", {.view = PictureView::map}, result);
+  refused("oblique.png", {.view = PictureView::oblique}, result);
+  refused("section.png", {.section_at = 0.0}, result);  // 2-D: one section
+  refused("narrow.png", {.width = 50}, result);
+  CHECK_THROWS_AS(render_picture(result, 1, dir.file("none.png")), InputError);
+  RunResult short_of_data = result;
+  short_of_data.snapshots[0].displacement.pop_back();
+  refused("short.png", {}, short_of_data);
+  CHECK(fs::is_empty(dir.path));
+}
 
-  // The same picture as the middle layer alone, drawn as a 2-D section.
-  RunResult layer;
-  layer.scene = {"layer", 2, spacing, "", 1.0};
-  for (std::size_t node = 0; node < middle.node_count(); ++node)
-    if (middle.positions[3 * node + 1] == spacing)
-      layer.positions.insert(layer.positions.end(),
-                             {middle.positions[3 * node], 0.0, middle.positions[3 * node + 2]});
-  add_nearest_bonds(layer);
-  add_snapshot(layer, 0.0);
-  CHECK(box_of(image, is_node_grey).pixels + box_of(image, is_red).pixels ==
-        box_of(render(layer, dir), is_node_grey).pixels);
+TEST_CASE("a failed write throws and leaves no file", "[render]") {
+  ScratchDir dir;
+  for (const std::string name : {"no_such_dir/picture.png", "no_such_dir/picture.svg"}) {
+    const std::string path = dir.file(name);
+    CHECK_THROWS_AS(render_picture(triangular_patch(), 0, path), Error);
+    CHECK_FALSE(fs::exists(path));
+    CHECK_FALSE(fs::exists(path + ".partial"));
+  }
 }
 
 TEST_CASE("snapshot_nearest picks the nearest lambda, the last for NaN", "[render]") {
@@ -246,64 +246,5 @@ TEST_CASE("snapshot_nearest picks the nearest lambda, the last for NaN", "[rende
   CHECK(snapshot_nearest(result, 0.012) == 0);
   CHECK(snapshot_nearest(result, 0.016) == 1);
   CHECK(snapshot_nearest(result, 0.031) == 2);
-  CHECK(snapshot_nearest(result, 1.0) == 2);
   CHECK(snapshot_nearest(result, std::nan("")) == 2);
-}
-
-TEST_CASE("the exaggeration moves the dots", "[render]") {
-  ScratchDir dir;
-  RunResult result = triangular_patch();
-  result.snapshots[0].bond_intact[bond_between(result, 0, 1)] = 0;  // at the left edge
-  for (std::size_t node = 0; node < result.node_count(); ++node)
-    result.snapshots[0].displacement[3 * node] = 9.5 * spacing;  // the patch's width
-
-  const Image still_image = render(result, dir, {800, 0.0});
-  const Image moved_image = render(result, dir, {800, 1.0});
-  const Box still = box_of(still_image, is_red);
-  const Box moved = box_of(moved_image, is_red);
-  // The frame holds the reference and the deformed patch side by side: the patch is drawn
-  // at about half the scale, and its left edge moves by about a third of the picture.
-  const double width_ratio = double(box_of(moved_image, is_node_grey).x1 - moved.x0) /
-                             (box_of(still_image, is_node_grey).x1 - still.x0);
-  CHECK(width_ratio > 0.45);
-  CHECK(width_ratio < 0.65);
-  CHECK(moved.centre_x() - still.centre_x() > 0.25 * 800);
-
-  result.scene.exaggeration = 1.0;
-  const Box from_scene = box_of(render(result, dir, {800, -1}), is_red);
-  CHECK(from_scene.x0 == moved.x0);
-  CHECK(from_scene.y0 == moved.y0);
-}
-
-TEST_CASE("a failed write throws and leaves no file", "[render]") {
-  ScratchDir dir;
-  const std::string path = dir.file("no_such_dir/picture.png");
-  CHECK_THROWS_AS(render_png(triangular_patch(), 0, path), Error);
-  CHECK_FALSE(fs::exists(path));
-  CHECK_FALSE(fs::exists(path + ".partial"));
-}
-
-TEST_CASE("inconsistent results and options are input errors", "[render]") {
-  ScratchDir dir;
-  const std::string path = dir.file("picture.png");
-  RunResult result = triangular_patch();
-  CHECK_THROWS_AS(render_png(result, 1, path), InputError);
-  CHECK_THROWS_AS(render_png(result, 0, path, {50, -1}), InputError);
-  result.snapshots[0].displacement.pop_back();
-  CHECK_THROWS_AS(render_png(result, 0, path), InputError);
-  CHECK_FALSE(fs::exists(path));
-}
-
-TEST_CASE("the font has a distinct glyph for every character the pictures use", "[render]") {
-  const std::string characters =
-      "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz.,-+=:()/_";
-  const Glyph& missing = glyph_for('\x01');
-  std::set<std::vector<std::uint8_t>> seen;
-  for (char c : characters) {
-    const Glyph& glyph = glyph_for(c);
-    INFO("character '" << c << "'");
-    CHECK(glyph.rows != missing.rows);
-    CHECK(seen.insert({glyph.rows.begin(), glyph.rows.end()}).second);
-  }
-  CHECK(text_width("x (km)", 2) == (6 * glyph_advance - 1) * 2);
 }

@@ -199,6 +199,17 @@ std::string describe(const Scene& scene) {
   out.entry("snapshots", snapshots);
   out.entry("exaggeration", scene.output.exaggeration);
   out.entry("picture", on_off(scene.output.picture));
+  if (scene.output.picture) {
+    const PictureOptions& picture = scene.output.picture_options;
+    std::string shows = std::string(name_of(picture.view)) + ", " + std::string(name_of(picture.style));
+    if (picture.field != NodeField::none) shows += ", field " + std::string(name_of(picture.field));
+    if (picture.faults) shows += ", faults";
+    if (picture.section_at)
+      shows += std::string(picture.section_axis == SectionAxis::y ? ", y = " : ", x = ") +
+               format_number(*picture.section_at) + " m";
+    out.entry("picture_shows", shows + " (" + scene.output.picture_format + ", " +
+                                   std::to_string(picture.width) + " px)");
+  }
 
   describe_solver(scene.solver, out);
   return out.str();

@@ -109,6 +109,9 @@ class Section {
   std::vector<std::string_view> keys_;
 };
 
+// The [output] section: snapshots and the picture of the final state (problem_output.cpp).
+void read_output(const Section& top, Scene& scene);
+
 // The scene the top level of a problem file describes (problem_sections.cpp).
 Scene read_scene(const Origin& origin, const toml::table& root);
 

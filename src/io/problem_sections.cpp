@@ -301,27 +301,6 @@ void read_loading(const Section& top, Scene& scene) {
   }
 }
 
-void read_output(const Section& top, Scene& scene) {
-  const auto s = top.section("output", {"snapshots", "exaggeration", "picture"});
-  if (!s) return;
-  const double total = scene.loading.total;
-  const Range between{std::min(0.0, total), std::max(0.0, total), false, false,
-                      "strain, between 0 and loading.total"};
-  scene.output.snapshots =
-      s->numbers("snapshots", between, 0, "[lambda, ...]").value_or(std::vector<double>{});
-  const std::vector<double>& snapshots = scene.output.snapshots;
-  for (std::size_t i = 1; i < snapshots.size(); ++i) {
-    if (std::abs(snapshots[i]) <= std::abs(snapshots[i - 1])) {
-      s->fail("snapshots",
-              "are not in loading order (" + format_number(snapshots[i - 1]) + " then " +
-                  format_number(snapshots[i]) + ")",
-              "allowed: strains in the order loading reaches them, each once");
-    }
-  }
-  scene.output.exaggeration = s->number("exaggeration", non_negative(), 1.0);
-  scene.output.picture = s->boolean("picture").value_or(true);
-}
-
 void read_solver(const Section& top, SolverOptions& solver) {
   const auto s =
       top.section("solver", {"method", "tolerance", "max_iterations", "ordering", "refactor_every",

@@ -1,24 +1,26 @@
-// Cross-section pictures of a snapshot: which nodes to draw, where, and in which colour.
+// A snapshot picture: the options checked, the view made, then its layers drawn in order.
 #include "latfrac/render/render.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <vector>
+#include <optional>
 
+#include "canvas.h"
+#include "colour_map.h"
+#include "fault_overlay.h"
+#include "latfrac/analysis/fault_analysis.h"
 #include "latfrac/base/error.h"
-#include "raster.h"
-#include "render_axes.h"
+#include "latfrac/render/node_field.h"
+#include "oblique_block.h"
+#include "picture_layers.h"
+#include "scene_view.h"
 
 namespace latfrac {
 namespace {
 
-constexpr Rgb background{255, 255, 255};
-constexpr Rgb node_grey{90, 90, 90};
-constexpr Rgb broken_red{220, 20, 20};
-
-void check_result(const RunResult& result, std::size_t index, const RenderOptions& options) {
+void check_result(const RunResult& result, std::size_t index, const PictureOptions& options) {
   if (index >= result.snapshots.size())
     throw InputError("render: snapshot " + std::to_string(index) +
                      " does not exist (the result has " + std::to_string(result.snapshots.size()) +
@@ -37,8 +39,9 @@ void check_result(const RunResult& result, std::size_t index, const RenderOption
   if (nodes == 0 || result.positions.size() % 3 != 0)
     throw InputError("render: the result has " + std::to_string(result.positions.size()) +
                      " position values; need 3 per node and at least one node");
-  if (result.bonds.size() % 2 != 0)
-    throw InputError("render: the bond list has an odd number of node indices");
+  if (result.bonds.size() != 2 * result.bond_count())
+    throw InputError("render: the result has " + std::to_string(result.bonds.size()) +
+                     " bond node indices for " + std::to_string(result.bond_count()) + " bonds");
   for (std::int64_t node : result.bonds)
     if (node < 0 || static_cast<std::size_t>(node) >= nodes)
       throw InputError("render: a bond names node " + std::to_string(node) + " of " +
@@ -48,149 +51,80 @@ void check_result(const RunResult& result, std::size_t index, const RenderOption
     throw InputError("render: snapshot " + std::to_string(index) + " has " +
                      std::to_string(snapshot.displacement.size()) + " displacement values for " +
                      std::to_string(nodes) + " nodes");
-  if (snapshot.bond_intact.size() != result.bonds.size() / 2)
+  if (snapshot.bond_intact.size() != result.bond_count())
     throw InputError("render: snapshot " + std::to_string(index) + " has " +
                      std::to_string(snapshot.bond_intact.size()) + " bond_intact values for " +
-                     std::to_string(result.bonds.size() / 2) + " bonds");
+                     std::to_string(result.bond_count()) + " bonds");
 }
 
-double reference_length(const RunResult& result, std::size_t bond) {
-  const double* a = &result.positions[3 * result.bonds[2 * bond]];
-  const double* b = &result.positions[3 * result.bonds[2 * bond + 1]];
-  return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+std::string title_text(const RunResult& result, const Snapshot& snapshot, const SceneView& view) {
+  char numbers[128];
+  std::snprintf(numbers, sizeof numbers, "λ = %#.4g    exaggeration ×%g", snapshot.lambda,
+                view.exaggeration);
+  std::string title;
+  if (!result.scene.name.empty()) title += result.scene.name + "    ";
+  title += (result.scene.criterion.empty() ? "elastic" : result.scene.criterion) + "    " + numbers;
+  return view.where.empty() ? title : title + "    " + view.where;
 }
 
-// The node spacing in m: the scene's, or else the shortest bond's reference length.
-double node_spacing(const RunResult& result) {
-  if (result.scene.spacing > 0) return result.scene.spacing;
-  double shortest = std::numeric_limits<double>::infinity();
-  for (std::size_t bond = 0; bond < result.bonds.size() / 2; ++bond) {
-    const double length = reference_length(result, bond);
-    if (length > 0) shortest = std::min(shortest, length);
-  }
-  return std::isfinite(shortest) ? shortest : 1.0;
-}
-
-// All nodes of a 2-D result. Of a 3-D result, the lattice layer nearest the middle of y:
-// the nodes whose reference y is within spacing/2 of the node y closest to the mid-width.
-std::vector<std::size_t> section_nodes(const RunResult& result, double spacing) {
-  const std::size_t nodes = result.node_count();
-  std::vector<std::size_t> section;
-  section.reserve(nodes);
-  if (result.scene.dim == 2) {
-    for (std::size_t node = 0; node < nodes; ++node) section.push_back(node);
-    return section;
-  }
-  double y_min = std::numeric_limits<double>::infinity();
-  double y_max = -y_min;
-  for (std::size_t node = 0; node < nodes; ++node) {
-    y_min = std::min(y_min, result.positions[3 * node + 1]);
-    y_max = std::max(y_max, result.positions[3 * node + 1]);
-  }
-  const double mid = 0.5 * (y_min + y_max);
-  double layer_y = y_min;
-  for (std::size_t node = 0; node < nodes; ++node) {
-    const double y = result.positions[3 * node + 1];
-    if (std::abs(y - mid) < std::abs(layer_y - mid)) layer_y = y;
-  }
-  for (std::size_t node = 0; node < nodes; ++node)
-    if (std::abs(result.positions[3 * node + 1] - layer_y) < 0.5 * spacing) section.push_back(node);
-  return section;
-}
-
-std::vector<bool> touches_broken_bond(const RunResult& result, const Snapshot& snapshot) {
-  std::vector<bool> touches(result.node_count(), false);
-  for (std::size_t bond = 0; bond < snapshot.bond_intact.size(); ++bond) {
-    if (snapshot.bond_intact[bond] != 0) continue;
-    touches[result.bonds[2 * bond]] = true;
-    touches[result.bonds[2 * bond + 1]] = true;
-  }
-  return touches;
-}
-
-struct SectionPoint {
-  double x = 0, z = 0;  // deformed position, m
-  bool broken = false;
+// The field's values at the view's nodes, and their finite range.
+struct FieldOnView {
+  std::vector<double> values;
+  double low = 0, high = 0;
+  bool any = false;
 };
 
-std::vector<SectionPoint> section_points(const RunResult& result, const Snapshot& snapshot,
-                                         const std::vector<std::size_t>& section,
-                                         double exaggeration) {
-  const std::vector<bool> broken = touches_broken_bond(result, snapshot);
-  std::vector<SectionPoint> points;
-  points.reserve(section.size());
-  for (std::size_t node : section)
-    points.push_back(
-        {result.positions[3 * node] + exaggeration * snapshot.displacement[3 * node],
-         result.positions[3 * node + 2] + exaggeration * snapshot.displacement[3 * node + 2],
-         broken[node]});
-  return points;
-}
-
-// The data window: reference and deformed positions of the section, padded so dots stay
-// inside the frame.
-SectionWindow section_window(const RunResult& result, const std::vector<std::size_t>& section,
-                             const std::vector<SectionPoint>& points, double spacing) {
-  SectionWindow window{
-      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
-      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
-  auto include = [&window](double x, double z) {
-    window.x_min = std::min(window.x_min, x);
-    window.x_max = std::max(window.x_max, x);
-    window.z_min = std::min(window.z_min, z);
-    window.z_max = std::max(window.z_max, z);
-  };
-  for (std::size_t i = 0; i < section.size(); ++i) {
-    include(result.positions[3 * section[i]], result.positions[3 * section[i] + 2]);
-    include(points[i].x, points[i].z);
+FieldOnView field_on_view(const RunResult& result, const Snapshot& snapshot, const SceneView& view,
+                          NodeField field) {
+  FieldOnView on_view;
+  if (field == NodeField::none) return on_view;
+  const std::vector<double> all = node_field(result, snapshot, field);
+  for (const ViewNode& node : view.nodes) {
+    const double value = all[node.node];
+    on_view.values.push_back(value);
+    if (!std::isfinite(value)) continue;
+    on_view.low = on_view.any ? std::min(on_view.low, value) : value;
+    on_view.high = on_view.any ? std::max(on_view.high, value) : value;
+    on_view.any = true;
   }
-  if (!(std::isfinite(window.x_min) && std::isfinite(window.x_max) && std::isfinite(window.z_min) &&
-        std::isfinite(window.z_max)))
-    throw InputError("render: the deformed positions are not finite numbers");
-  const double pad =
-      std::max(spacing, 0.01 * std::max(window.x_max - window.x_min, window.z_max - window.z_min));
-  window.x_min -= pad;
-  window.x_max += pad;
-  window.z_min -= pad;
-  window.z_max += pad;
-  return window;
+  return on_view;
 }
 
-std::string title_text(const RunResult& result, const Snapshot& snapshot, double exaggeration) {
-  char numbers[128];
-  std::snprintf(numbers, sizeof numbers, "lambda = %#.4g   exaggeration x%g", snapshot.lambda,
-                exaggeration);
-  std::string title;
-  if (!result.scene.name.empty()) title += result.scene.name + "   ";
-  title += result.scene.criterion.empty() ? "elastic" : result.scene.criterion;
-  return title + "   " + numbers;
-}
-
-// The radius of a particle's dot, pixels, for a spacing of `spacing` pixels. Dots 10 px
-// apart or more have radius 0.45 spacing, so each particle shows, with a gap of at least
-// 1 px at every bond: every pixel row or column across the gap has a pixel centre in it.
-// Closer dots cannot keep such a gap, and a gap under a pixel wide shows or not depending
-// on where the pixel centres fall: at 500 m spacing, 800 px wide, the gaps between two
-// rows fell on the same pixel rows and made white lines that looked like horizontal
-// cracks. So closer dots are drawn solid: radius 0.6 spacing + 0.5 px covers the centre
-// of every triangle of neighbours (0.577 spacing away), with room for 4 % stretch, so
-// only opened bonds leave white.
-double particle_radius(double spacing) {
-  return spacing >= 10 ? 0.45 * spacing : std::max(1.0, 0.6 * spacing + 0.5);
-}
-
-void draw_points(Canvas& canvas, const SectionLayout& layout,
-                 const std::vector<SectionPoint>& points, double spacing) {
-  const double pixels_per_m = std::min(layout.x.pixels_per_unit(), layout.z.pixels_per_unit());
-  const double radius = particle_radius(spacing * pixels_per_m);
-  for (bool broken : {false, true})
-    for (const SectionPoint& point : points)
-      if (point.broken == broken)
-        canvas.disc(layout.x.position(point.x), layout.z.position(point.z), radius,
-                    broken ? broken_red : node_grey);
+// The nodes in drawing order with their colours: the field's, or the style's; the
+// particles that touch a broken bond last, on top.
+void draw_lattice(Canvas& canvas, const SceneView& view, const PictureLayout& layout,
+                  const PictureOptions& options, const FieldOnView& field) {
+  std::vector<ViewNode> nodes, touching;
+  std::vector<Colour> colours, touching_colours;
+  const bool particles = options.style == CrackStyle::particles && view.kind != PictureView::oblique;
+  for (std::size_t i = 0; i < view.nodes.size(); ++i) {
+    Colour colour = particles ? particle_colour : lattice_colour;
+    if (options.field != NodeField::none)
+      colour = field_colour(field.high > field.low ? (field.values[i] - field.low) / (field.high - field.low)
+                                                   : std::isnan(field.values[i]) ? field.values[i] : 0.5);
+    if (particles && view.touches_broken[view.nodes[i].node]) {
+      touching.push_back(view.nodes[i]);
+      touching_colours.push_back(broken_particle_colour);
+    } else {
+      nodes.push_back(view.nodes[i]);
+      colours.push_back(colour);
+    }
+  }
+  const double spacing = view.spacing * layout.pixels_per_m();
+  const double radius = view.kind == PictureView::oblique ? std::max(0.6, 0.22 * spacing)
+                                                          : particle_radius(spacing);
+  draw_nodes(canvas, nodes, layout, colours, radius);
+  draw_nodes(canvas, touching, layout, touching_colours, radius);
 }
 
 }  // namespace
+
+std::array<double, 2> PictureReport::pixel_of(const std::array<double, 3>& position) const {
+  const double h = right[0] * position[0] + right[1] * position[1] + right[2] * position[2];
+  const double v = up[0] * position[0] + up[1] * position[1] + up[2] * position[2];
+  return {frame[0] + (h - window[0]) / (window[1] - window[0]) * (frame[2] - frame[0]),
+          frame[3] - (v - window[2]) / (window[3] - window[2]) * (frame[3] - frame[1])};
+}
 
 std::size_t snapshot_nearest(const RunResult& result, double lambda) {
   if (result.snapshots.empty()) throw InputError("render: the result has no snapshots");
@@ -203,22 +137,72 @@ std::size_t snapshot_nearest(const RunResult& result, double lambda) {
   return nearest;
 }
 
-void render_png(const RunResult& result, std::size_t index, const std::string& png_path,
-                const RenderOptions& options) {
+PictureReport render_picture(const RunResult& result, std::size_t index, const std::string& path,
+                             const PictureOptions& options) {
+  // 1. Everything that can be wrong with the input, before any file is made.
+  picture_format_of(path);
   check_result(result, index, options);
   const Snapshot& snapshot = result.snapshots[index];
   const double exaggeration =
       options.exaggeration >= 0 ? options.exaggeration : result.scene.exaggeration;
-  const double spacing = node_spacing(result);
-  const std::vector<std::size_t> section = section_nodes(result, spacing);
-  const std::vector<SectionPoint> points = section_points(result, snapshot, section, exaggeration);
-  const SectionLayout layout =
-      layout_section(section_window(result, section, points, spacing), options.width);
+  const SceneView view = make_view(result, snapshot, options, exaggeration);
+  const FieldOnView field = field_on_view(result, snapshot, view, options.field);
+  std::optional<FaultReport> faults;
+  if (options.faults) faults = analyze_faults(result, index);
 
-  Canvas canvas(layout.width, layout.height, background);
-  draw_axes(canvas, layout, title_text(result, snapshot, exaggeration));
-  draw_points(canvas, layout, points, spacing);
-  canvas.write_png(png_path);
+  // 2. The layout, and what it tells the caller.
+  const bool oblique = view.kind == PictureView::oblique;
+  const PictureLayout layout =
+      layout_picture(view, options.width, !oblique, options.field != NodeField::none);
+  PictureReport report;
+  report.width = layout.width, report.height = layout.height;
+  report.frame = {layout.frame.left, layout.frame.top, layout.frame.right, layout.frame.bottom};
+  report.window = {layout.h.low, layout.h.high, layout.v.low, layout.v.high};
+  report.right = view.right, report.up = view.up;
+  report.field_min = field.low, report.field_max = field.high;
+  report.nodes_drawn = view.nodes.size();
+  const bool cracks = options.style == CrackStyle::cracks || oblique;
+  report.broken_bonds_drawn = cracks ? view.broken.size() : 0;
+
+  // 3. The layers, back to front.
+  draw_picture_file(path, layout.width, layout.height, [&](Canvas& canvas) {
+    canvas.font_size(1.15 * layout.font);
+    canvas.colour(ink_colour);
+    canvas.text(0.5 * layout.width, 1.2 * layout.font, title_text(result, snapshot, view),
+                Align::centre, Align::centre);
+    canvas.font_size(layout.font);
+    if (oblique) draw_block(canvas, view, layout);
+    draw_lattice(canvas, view, layout, options, field);
+    std::vector<LegendEntry> legend, fault_legend;
+    auto fault_layer = [&](FaultLayer layer) {
+      if (faults) fault_legend = draw_faults(canvas, view, layout, result, snapshot, *faults, layer);
+    };
+    fault_layer(FaultLayer::areas);  // under the cracks
+    if (cracks) {
+      draw_cracks(canvas, view, layout, options.field != NodeField::none, oblique);
+      legend = crack_legend(view);
+    } else {
+      legend.push_back({LegendEntry::Symbol::disc, broken_particle_colour, "touches a broken bond"});
+    }
+    fault_layer(FaultLayer::lines);
+    fault_layer(FaultLayer::labels);
+    legend.insert(legend.end(), fault_legend.begin(), fault_legend.end());
+    if (!oblique) {
+      const std::vector<Tick> h_ticks = linear_ticks(canvas, layout.h, 1000, true);
+      const std::vector<Tick> v_ticks = linear_ticks(canvas, layout.v, 1000, false);
+      draw_axes(canvas, layout.frame, layout.h, h_ticks, layout.v, v_ticks,
+                {view.h_title, view.v_title});
+    }
+    if (options.field != NodeField::none) {
+      const FieldLabel label = field_label(options.field);
+      const std::string title = label.unit.empty() ? label.title : label.title + " (" + label.unit + ")";
+      const auto [low, high] = draw_colour_bar(canvas, layout, field.low * label.per_si,
+                                               field.high * label.per_si, title);
+      report.colour_bar_low = low, report.colour_bar_high = high;
+    }
+    draw_legend_row(canvas, layout, legend);
+  });
+  return report;
 }
 
 }  // namespace latfrac

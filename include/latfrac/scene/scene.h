@@ -22,6 +22,7 @@
 #include "latfrac/geometry/precut.h"
 #include "latfrac/mechanics/material.h"
 #include "latfrac/mechanics/supports.h"
+#include "latfrac/scene/picture_options.h"
 #include "latfrac/solvers/solver_options.h"
 
 namespace latfrac {
@@ -56,7 +57,9 @@ struct Heterogeneity {
 struct Output {
   std::vector<double> snapshots;  // lambda values at which to store a snapshot
   double exaggeration = 1;        // displacement magnification in pictures
-  bool picture = true;            // write a PNG of the final state
+  bool picture = true;            // write a picture of the final state
+  std::string picture_format = "png";  // its file's extension: png, svg or pdf
+  PictureOptions picture_options;      // what it shows
 };
 
 struct Scene {
