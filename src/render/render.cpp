@@ -111,7 +111,7 @@ void draw_lattice(Canvas& canvas, const SceneView& view, const PictureLayout& la
     }
   }
   const double spacing = view.spacing * layout.pixels_per_m();
-  const double radius = view.kind == PictureView::oblique ? std::max(0.6, 0.22 * spacing)
+  const double radius = view.kind == PictureView::oblique ? std::max(0.6, 0.15 * spacing)
                                                           : particle_radius(spacing);
   draw_nodes(canvas, nodes, layout, colours, radius);
   draw_nodes(canvas, touching, layout, touching_colours, radius);
