@@ -144,7 +144,8 @@ std::string angle_interpretation(const StudyResult& study);
 
 std::string study_csv(const StudyResult& study);
 std::string study_markdown(const StudyResult& study);
-// study.png: error against wall time, log-log (src/study/study_plot.cpp).
+// study.png: error against wall time and wall time against increment, log-log
+// (src/study/study_plot.cpp).
 void write_study_plot(const StudyResult& study, const std::string& path);
 
 // Writes study.csv, study.md and study.png into out_dir (created if missing), each under
