@@ -65,7 +65,7 @@ RunResult made_up_snapshot(int dim, double spacing, bool shattered = false) {
     snapshot.bond_failure_index.push_back(across || precut ? 1.0 : 0.5 * middle[2] / top);
     if (across || precut)
       result.events.push_back({precut ? 0.0 : 0.005, static_cast<std::int64_t>(b), 1.0,
-                               static_cast<std::int8_t>(precut ? 2 : middle[2] > top / 2 ? 0 : 1), 0});
+                               precut ? BreakMode::precut : middle[2] > top / 2 ? BreakMode::tensile : BreakMode::shear, 0});
   }
   result.snapshots.push_back(snapshot);
   return result;

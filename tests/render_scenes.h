@@ -125,7 +125,7 @@ inline std::size_t bond_between(const RunResult& result, std::int64_t a, std::in
 inline std::size_t break_bond(RunResult& result, std::int64_t a, std::int64_t b, std::int8_t mode) {
   const std::size_t bond = bond_between(result, a, b);
   for (Snapshot& snapshot : result.snapshots) snapshot.bond_intact[bond] = 0;
-  result.events.push_back({0.0, static_cast<std::int64_t>(bond), 1.0, mode, 0});
+  result.events.push_back({0.0, static_cast<std::int64_t>(bond), 1.0, static_cast<BreakMode>(mode), 0});
   return bond;
 }
 

@@ -31,7 +31,7 @@ std::vector<std::int8_t> bond_modes(const RunResult& result, double lambda) {
   for (const BreakEvent& event : result.events)
     if (event.lambda <= lambda && event.bond >= 0 &&
         static_cast<std::size_t>(event.bond) < modes.size())
-      modes[event.bond] = event.mode;
+      modes[event.bond] = static_cast<std::int8_t>(event.mode);
   return modes;
 }
 
