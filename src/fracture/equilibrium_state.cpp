@@ -121,15 +121,8 @@ void EquilibriumState::change_pairs(const std::vector<PairChange>& changes, doub
     solver_.set_pair_state(change.bond, change.state);
     if (connected && !connects(change.state)) disconnected.push_back(change.bond);
   }
-  // The first part is held where it was; a later one where a solve of the changed model
-  // puts it (as the continuation always did).
-  bool held = false;
-  for (std::int64_t bond : disconnected) {
-    const auto parts = fragments_detector_.unsupported_after_break(model_, bond);
-    if (parts.empty()) continue;
-    hold(parts, lambda, held ? displacement(lambda) : before);
-    held = true;
-  }
+  for (std::int64_t bond : disconnected)
+    hold(fragments_detector_.unsupported_after_break(model_, bond), lambda, before);
   resolve(lambda);
 }
 
