@@ -106,10 +106,22 @@ CriterionParameters resolve_criterion(const Strength& strength, int dim) {
               " needs a shear strength: tau0 > 0 (Pa), or friction_angle (degrees) to derive it");
   require(!entry.needs_friction_angle || psi,
           "criterion " + std::string(entry.name) + " needs friction_angle (degrees)");
+  require(std::isfinite(strength.internal_friction) && strength.internal_friction >= 0,
+          "internal_friction must be >= 0 (dimensionless)");
+  require(!(strength.internal_friction > 0 && strength.criterion == Criterion::elliptic &&
+            strength.bond_stress == BondStress::critical_plane),
+          "internal_friction with criterion elliptic is not available on bond_stress = "
+          "\"critical_plane\" (its largest value over planes has no convex form); use "
+          "bond_stress = \"tensor\" or \"strain\", or criterion tensile_or_shear");
+  require(!(strength.internal_friction > 0 && (strength.criterion == Criterion::tensile ||
+                                               strength.criterion == Criterion::drucker_prager)),
+          "internal_friction is not used by criterion " + std::string(entry.name) +
+              " (tensile has no shear strength; drucker_prager has its own pressure term)");
 
   CriterionParameters p;
   p.criterion = strength.criterion;
   p.dim = dim;
+  p.internal_friction = strength.internal_friction;
   p.sigma0 = strength.sigma0;
   if (strength.tau0) {
     p.tau0 = *strength.tau0;

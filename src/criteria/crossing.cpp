@@ -31,6 +31,45 @@ Quadratic shear_part(const AffineBondStress& s, double tau0) {
   return {t1.squaredNorm(), 2 * t0.dot(t1), t0.squaredNorm() - 1};
 }
 
+Quadratic pressure_shear_part(const AffineBondStress& s, double tau0, double mu) {
+  const Eigen::Vector3d t0 = s.shear0 / tau0, t1 = s.shear1 / tau0;
+  const double h0 = 1 - mu * s.normal0 / tau0, h1 = -mu * s.normal1 / tau0;
+  return {t1.squaredNorm() - h1 * h1, 2 * (t0.dot(t1) - h0 * h1), t0.squaredNorm() - h0 * h0};
+}
+
+int sign_pieces(const AffineBondStress& start, double length, SignPiece (&pieces)[2]) {
+  double bounds[3] = {0, length, length};
+  int count = 1;
+  if (start.normal1 != 0) {
+    const double zero = -start.normal0 / start.normal1;
+    if (zero > 0 && zero < length) {
+      bounds[1] = zero;
+      count = 2;
+    }
+  }
+  for (int p = 0; p < count; ++p) {
+    const double lo = bounds[p], hi = bounds[p + 1];
+    AffineBondStress piece = moved_to(start, lo);
+    if (p > 0) piece.normal0 = 0;
+    pieces[p] = {lo, hi, piece, piece.normal0 + 0.5 * (hi - lo) * piece.normal1 > 0};
+  }
+  return count;
+}
+
+double first_shear_crossing(const AffineBondStress& start, double tau0, double mu, double length) {
+  if (mu == 0) return first_nonnegative(shear_part(start, tau0), length);
+  SignPiece pieces[2];
+  const int count = sign_pieces(start, length, pieces);
+  for (int p = 0; p < count; ++p) {
+    const SignPiece& piece = pieces[p];
+    const Quadratic g = piece.tension ? shear_part(piece.stress, tau0)
+                                      : pressure_shear_part(piece.stress, tau0, mu);
+    const double x = first_nonnegative(g, piece.to - piece.from);
+    if (x < infinity) return piece.from + x;
+  }
+  return infinity;
+}
+
 double to_lambda(double from, double x, double to) {
   if (x == infinity) return infinity;
   if (x == 0) return from;

@@ -41,6 +41,22 @@ AffineBondStress moved_to(const AffineBondStress& s, double l);
 Quadratic tensile_part(const AffineBondStress& s, double sigma0);
 // |t|^2 / tau0^2 - 1 (identically -1 when tau0 = +inf).
 Quadratic shear_part(const AffineBondStress& s, double tau0);
+// |t|^2 / tau0^2 - (1 - mu sn / tau0)^2: the shear part with the strength tau0 - mu sn,
+// valid where sn <= 0 (there the strength is positive, so the sign is that of
+// |t| - (tau0 - mu sn)).
+Quadratic pressure_shear_part(const AffineBondStress& s, double tau0, double mu);
+// The pieces of [0, length] on which sn keeps its sign (split where it changes sign): one
+// or two, each with its stress moved to its start (sn exactly 0 at a split) and whether
+// sn > 0 on it (by its middle).
+struct SignPiece {
+  double from, to;
+  AffineBondStress stress;
+  bool tension;
+};
+int sign_pieces(const AffineBondStress& start, double length, SignPiece (&pieces)[2]);
+// The first x in [0, length] where the shear part reaches 1 with the strength
+// tau0 + mu <-sn>+ (mu = 0: tau0 throughout); +infinity when none.
+double first_shear_crossing(const AffineBondStress& start, double tau0, double mu, double length);
 // From the local offset x back to lambda, strictly after 'from' unless x = 0.
 double to_lambda(double from, double x, double to);
 

@@ -1,7 +1,6 @@
 // The elliptic (strain-energy) criterion, the paper's Eq. 3:
-// f = (<sigma_n>+ / sigma0)^2 + (tau / tau0)^2.
+// f = (<sigma_n>+ / sigma0)^2 + (tau / (tau0 + mu_i <-sigma_n>+))^2.
 #include <algorithm>
-#include <array>
 
 #include "criterion_makers.h"
 #include "crossing_parts.h"
@@ -22,25 +21,19 @@ Quadratic ellipse(const AffineBondStress& s, double sigma0, double tau0) {
   return g;
 }
 
-// The interval is split where sn changes sign: <sn>+ is 0 on one side.
-double elliptic_crossing(const AffineBondStress& start, double sigma0, double tau0, double length) {
-  std::array<double, 3> bounds{0, length, length};
-  int pieces = 1;
-  if (start.normal1 != 0) {
-    const double zero = -start.normal0 / start.normal1;
-    if (zero > 0 && zero < length) {
-      bounds[1] = zero;
-      pieces = 2;
-    }
-  }
-  for (int p = 0; p < pieces; ++p) {
-    const double lo = bounds[p], hi = bounds[p + 1];
-    AffineBondStress piece = moved_to(start, lo);
-    if (p > 0) piece.normal0 = 0;
-    const bool tension = piece.normal0 + 0.5 * (hi - lo) * piece.normal1 > 0;
-    const Quadratic g = tension ? ellipse(piece, sigma0, tau0) : shear_part(piece, tau0);
-    const double x = first_nonnegative(g, hi - lo);
-    if (x < infinity) return lo + x;
+// The interval is split where sn changes sign: <sn>+ is 0 on one side, and the shear
+// strength tau0 + mu <-sn>+ is tau0 on the other.
+double elliptic_crossing(const AffineBondStress& start, double sigma0, double tau0, double mu,
+                         double length) {
+  SignPiece pieces[2];
+  const int count = sign_pieces(start, length, pieces);
+  for (int p = 0; p < count; ++p) {
+    const SignPiece& piece = pieces[p];
+    const Quadratic g = piece.tension ? ellipse(piece.stress, sigma0, tau0)
+                        : mu == 0     ? shear_part(piece.stress, tau0)
+                                      : pressure_shear_part(piece.stress, tau0, mu);
+    const double x = first_nonnegative(g, piece.to - piece.from);
+    if (x < infinity) return piece.from + x;
   }
   return infinity;
 }
@@ -51,7 +44,7 @@ class Elliptic final : public FailureCriterion {
 
   FailureIndex index(double sigma_n, double tau, const BondStrength& strength) const override {
     const double normal = std::max(sigma_n, 0.0) / strength.sigma0;
-    const double shear = tau / strength.tau0;
+    const double shear = tau / (strength.tau0 + mu() * std::max(-sigma_n, 0.0));
     return {normal * normal + shear * shear,
             normal >= shear ? BreakMode::tensile : BreakMode::shear};
   }
@@ -67,12 +60,16 @@ class Elliptic final : public FailureCriterion {
                         double to) const override {
     const AffineBondStress start = moved_to(stress, from);
     if (index(start.normal0, start.shear0.norm(), strength).value >= 1) return from;
-    return to_lambda(from, elliptic_crossing(start, strength.sigma0, strength.tau0, to - from), to);
+    return to_lambda(
+        from, elliptic_crossing(start, strength.sigma0, strength.tau0, mu(), to - from), to);
   }
 
   double rank(double normal_ratio, double shear_ratio_squared) const override {
     return normal_ratio * normal_ratio + shear_ratio_squared;
   }
+
+ private:
+  double mu() const { return parameters().internal_friction; }
 };
 
 }  // namespace

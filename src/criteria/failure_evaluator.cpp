@@ -80,8 +80,15 @@ double FailureEvaluator::rank(const Model& model, const Vector& displacement, st
   const Vec3 du = model.bond_displacement(displacement, b);
   const double dn = n0.dot(du);
   const double normal = std::max(dn, 0.0) * normal_scale_[b];
-  const double shear_squared =
+  double shear_squared =
       std::max(du.squaredNorm() - dn * dn, 0.0) * shear_scale_[b] * shear_scale_[b];
+  // With internal friction the shear strength is tau0 (1 + mu <-sigma_n>+ / tau0).
+  const double mu = parameters().internal_friction;
+  if (mu > 0) {
+    const double compression = std::max(-dn, 0.0) * normal_scale_[b] * model.bond_sigma0[b];
+    const double gain = 1 + mu * compression / model.bond_tau0[b];
+    shear_squared /= gain * gain;
+  }
   return criterion_->rank(normal, shear_squared);
 }
 

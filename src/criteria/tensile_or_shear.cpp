@@ -1,6 +1,7 @@
-// The tensile-or-shear criterion: f = max(<sigma_n>+ / sigma0, tau / tau0) (critical plane:
-// Rankine or Tresca).
+// The tensile-or-shear criterion: f = max(<sigma_n>+ / sigma0, tau / (tau0 + mu_i <-sigma_n>+))
+// (critical plane: Rankine or Tresca; with internal friction, Rankine or Mohr-Coulomb).
 #include <algorithm>
+#include <cmath>
 
 #include "criterion_makers.h"
 #include "crossing_parts.h"
@@ -20,14 +21,22 @@ class TensileOrShear final : public FailureCriterion {
   using FailureCriterion::FailureCriterion;
 
   FailureIndex index(double sigma_n, double tau, const BondStrength& strength) const override {
-    return larger_of(std::max(sigma_n, 0.0) / strength.sigma0, tau / strength.tau0);
+    return larger_of(std::max(sigma_n, 0.0) / strength.sigma0,
+                     tau / (strength.tau0 + mu() * std::max(-sigma_n, 0.0)));
   }
 
-  // The largest normal stress (s1) and the largest shear stress (the circle's radius).
+  // The largest normal stress (s1) and, without internal friction, the largest shear
+  // stress (the circle's radius): Tresca. With it, Mohr-Coulomb: the circle reaches the
+  // line tau = tau0 - mu_i sigma_n where r sqrt(1 + mu_i^2) + mu_i c = tau0, so the shear
+  // part is (r sqrt(1 + mu_i^2) + mu_i c) / tau0, linear in (c, r), hence convex along a
+  // path (docs/criteria.md: on the critical plane the line is not capped at tau0 in
+  // tension, where the tension branch usually decides first).
   FailureIndex tensor_index(const VoigtStress& stress, const BondStrength& strength) const override {
     const MohrCircle circle = outer_circle(stress, dim());
-    return larger_of(std::max(circle.centre + circle.radius, 0.0) / strength.sigma0,
-                     circle.radius / strength.tau0);
+    const double normal = std::max(circle.centre + circle.radius, 0.0) / strength.sigma0;
+    if (mu() == 0) return larger_of(normal, circle.radius / strength.tau0);
+    return larger_of(normal, (circle.radius * std::sqrt(1 + mu() * mu()) + mu() * circle.centre) /
+                                 strength.tau0);
   }
 
   // The earlier of the two parts' crossings.
@@ -37,14 +46,17 @@ class TensileOrShear final : public FailureCriterion {
     if (index(start.normal0, start.shear0.norm(), strength).value >= 1) return from;
     const double length = to - from;
     const double x = std::min(first_nonnegative(tensile_part(start, strength.sigma0), length),
-                              first_nonnegative(shear_part(start, strength.tau0), length));
+                              first_shear_crossing(start, strength.tau0, mu(), length));
     return to_lambda(from, x, to);
   }
 
-  // The larger squared ratio.
+  // The larger squared ratio (the shear ratio with the strength the evaluator gives it).
   double rank(double normal_ratio, double shear_ratio_squared) const override {
     return std::max(normal_ratio * normal_ratio, shear_ratio_squared);
   }
+
+ private:
+  double mu() const { return parameters().internal_friction; }
 };
 
 }  // namespace

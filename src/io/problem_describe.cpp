@@ -75,6 +75,11 @@ void describe_strength(const Strength& strength, Listing& out) {
             : strength.bond_stress == BondStress::tensor
                 ? "(the bond's stress tensor resolved on its direction)"
                 : "(the bond's stress tensor on the plane where f is largest)");
+  out.entry("internal_friction", strength.internal_friction,
+            strength.criterion == Criterion::tensile || strength.criterion == Criterion::drucker_prager
+                ? "(not used by this criterion)"
+            : strength.internal_friction > 0 ? "(shear strength tau0 + mu_i <-sigma_n>+)"
+                                             : "(shear strength tau0 in compression too)");
 }
 
 void describe_solver(const SolverOptions& solver, Listing& out) {

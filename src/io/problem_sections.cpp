@@ -115,7 +115,7 @@ void read_boundary(const Section& top, int dim, Scene& scene) {
 std::optional<Strength> read_strength(const Section& top) {
   const std::optional<Section> s =
       top.section("strength", {"criterion", "sigma0", "tau0", "friction_angle", "tau0_factor",
-                              "bond_stress"});
+                              "bond_stress", "internal_friction"});
   if (!s) return std::nullopt;
   const std::vector<std::string_view> criteria(criterion_names().begin(),
                                                criterion_names().end());
@@ -127,6 +127,21 @@ std::optional<Strength> read_strength(const Section& top) {
   strength.tau0_factor = s->number("tau0_factor", positive(), 1.0);
   if (const auto source = s->choice("bond_stress", {"strain", "tensor", "critical_plane"}))
     strength.bond_stress = static_cast<BondStress>(*source);
+  strength.internal_friction = s->number("internal_friction", non_negative(), 0.0);
+  if (strength.internal_friction > 0 && strength.criterion == Criterion::elliptic &&
+      strength.bond_stress == BondStress::critical_plane) {
+    s->fail("internal_friction",
+            "with criterion elliptic is not available on bond_stress = \"critical_plane\" (its "
+            "largest value over planes has no convex form)",
+            "allowed: bond_stress = \"tensor\" or \"strain\", or criterion tensile_or_shear");
+  }
+  if (strength.internal_friction > 0 && (strength.criterion == Criterion::tensile ||
+                                         strength.criterion == Criterion::drucker_prager)) {
+    s->fail("internal_friction",
+            "is not used by criterion " + std::string(to_string(strength.criterion)) +
+                " (tensile has no shear strength; drucker_prager has its own pressure term)",
+            "allowed: 0, or criterion tensile_or_shear or elliptic");
+  }
 
   const std::string criterion = name_of(to_string(strength.criterion));
   if (strength.tau0 && strength.tau0_factor != 1) {

@@ -54,6 +54,8 @@ struct CriterionParameters {
   // Drucker-Prager constants (the cohesion c is the bond's tau0); NaN without a friction angle.
   double dp_alpha = 0;
   double dp_k_per_cohesion = 0;
+  // mu_i of tau0 + mu_i <-sigma_n>+ (dimensionless, >= 0).
+  double internal_friction = 0;
 };
 
 // dim (2 or 3) selects the plane-strain or 3-D Drucker-Prager constants. Throws InputError

@@ -27,6 +27,10 @@ struct Strength {
   std::optional<double> friction_angle;  // psi, degrees
   double tau0_factor = 1;                // m in tau0 = m sigma0 (1 + sin psi) / (2 cos psi)
   BondStress bond_stress = BondStress::strain;  // not used by drucker_prager (always the tensor)
+  // mu_i: the shear strength grows with compression, tau0 + mu_i <-sigma_n>+ (0: it does
+  // not; docs/criteria.md). Not used by tensile (no tau0) or drucker_prager (which has its
+  // own pressure term).
+  double internal_friction = 0;
 };
 
 }  // namespace latfrac
