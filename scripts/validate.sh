@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # Reproduces docs/validation.md: runs the paper's scenes (problems/fig*.toml with the
-# overrides each figure needs), draws each at its first structure and at its end, and
-# prints the table of docs/validation.md with the fault analysis of every run.
+# overrides each figure needs; contact on, as shipped), the same scenes without contact,
+# and Fig. 6 at 707 and 500 m, draws each at its first structure and at its end, and
+# prints the tables of docs/validation.md with the fault analysis of every run.
 #
 #   bash scripts/validate.sh [build-dir] [figure-dir] [work-dir]
 #
 # build-dir defaults to build/ (the README's build); the pictures go to figure-dir
 # (default docs/figures/validation/, the ones the doc shows), the result files and the
-# fault analyses (JSON) to work-dir (default out/validation/). About a minute on 2 cores.
+# fault analyses (JSON) to work-dir (default out/validation/). About three minutes on 2 cores.
 set -euo pipefail
 
 here=$(cd "$(dirname "$0")/.." && pwd)
@@ -51,8 +52,11 @@ for path in paths:
     faults = [f for f in r["faults"] if not f["diffuse"]]
     diffuse = sum(f["bonds"] for f in r["faults"] if f["diffuse"])
     angles = ", ".join(f"{f['alpha_deg']:.1f}" for f in faults[:4]) or "-"
+    graben = r.get("graben")
+    gtext = ("graben: " + " / ".join(f"dip {f['dip_deg']:.1f} to {f['side']}" for f in graben["faults"])
+             if graben else "no graben")
     cells.append(f"{taken}{r['broken_bonds']} broken; {len(faults)} faults (alpha {angles}); "
-                 f"{diffuse} in diffuse clusters; {len(r['grabens'])} grabens")
+                 f"{diffuse} in diffuse clusters; {gtext}")
 print(f"| {rid} | {cells[0]} | {cells[1]} | {seconds} s |")
 EOF
 }
@@ -88,3 +92,33 @@ run fig8-fixed fig6-elliptic-graben-2d.toml --set lattice.size=[60e3,15e3] \
   --set loading.total=0.02 --set 'output.snapshots=[0.0005,0.001,0.01,0.02]' \
   --set 'precut=[{from=[30250,15900],to=[30250,10e3]}]'
 run reference-3d reference-3d.toml
+
+# The paper's scenes without contact: a broken bond carries nothing.
+echo
+echo "| run (no contact) | at lambda = $early | at the end | wall |"
+echo "|---|---|---|---|"
+off="contact.enabled=false"
+run fig4a-fixed-nocontact fig4a-tensile-2d.toml --set $off
+run fig4a-strain-nocontact fig4a-tensile-2d.toml --set $off --set stepping.method=event \
+  --set strength.bond_stress=strain
+run fig4b-fixed-nocontact fig4b-tensile-or-shear-2d.toml --set $off
+run fig6-fixed-nocontact fig6-elliptic-graben-2d.toml --set $off
+run fig6-event-nocontact fig6-elliptic-graben-2d.toml --set $off --set stepping.method=event
+run fig7c-fixed-nocontact fig7c-drucker-prager-2d.toml --set $off
+run reference-3d-nocontact reference-3d.toml --set $off
+
+# Fig. 6 with contact, event-driven, at finer spacings (the pre-cut moved with the
+# spacing: a quarter spacing right of 30 km, from above the surface row to 25 km).
+echo
+echo "| run (spacing) | at lambda = $early | at the end | wall |"
+echo "|---|---|---|---|"
+run fig6-event-707 fig6-elliptic-graben-2d.toml --set stepping.method=event \
+  --set lattice.spacing=707.1 --set 'precut=[{from=[30176.8,30700],to=[30176.8,25e3]}]'
+run fig6-event-500 fig6-elliptic-graben-2d.toml --set stepping.method=event \
+  --set lattice.spacing=500 --set 'precut=[{from=[30125,30400],to=[30125,25e3]}]'
+run fig6-psi30-event fig6-elliptic-graben-2d.toml --set stepping.method=event \
+  --set strength.friction_angle=30
+run fig6-psi20-event fig6-elliptic-graben-2d.toml --set stepping.method=event \
+  --set strength.friction_angle=20
+run fig6-psi45-event fig6-elliptic-graben-2d.toml --set stepping.method=event \
+  --set strength.friction_angle=45
