@@ -21,7 +21,8 @@ for problem in "$here"/problems/*.toml; do
     for contact in "" "-contact"; do
       extra=(--set stepping.method=$method)
       [[ $method == fixed ]] && ! grep -q '^increment' "$problem" && extra+=(--set stepping.increment=1e-3)
-      [[ -n $contact ]] && extra+=(--set contact.enabled=true)
+      if [[ -n $contact ]]; then extra+=(--set contact.enabled=true)
+      elif grep -q "^\[contact\]" "$problem"; then extra+=(--set contact.enabled=false); fi
       # An elastic scene (no [strength]) has no events; contact needs a [strength].
       grep -q '^\[strength\]' "$problem" || { [[ -z $contact && $method == event ]] || continue; }
       dir=$(mktemp -d)

@@ -132,15 +132,32 @@ CholeskyFactor::~CholeskyFactor() {
 
 bool CholeskyFactor::analyzed() const { return state_->symbolic != nullptr; }
 
-void CholeskyFactor::analyze(StiffnessMatrix& matrix) {
+void CholeskyFactor::analyze(StiffnessMatrix& matrix, const std::vector<std::int64_t>& given) {
   cholmod_common& c = state_->common;
   cholmod_l_free_factor(&state_->factor, &c);
   cholmod_l_free_factor(&state_->symbolic, &c);
   inverse_permutation_.clear();
   factorized_ = false;
   cholmod_sparse a = view_of(matrix);
-  state_->symbolic = cholmod_l_analyze(&a, &c);
-  check(c, state_->symbolic != nullptr, "cholmod_l_analyze");
+  if (given.empty()) {
+    state_->symbolic = cholmod_l_analyze(&a, &c);
+    check(c, state_->symbolic != nullptr, "cholmod_l_analyze");
+    return;
+  }
+  if (static_cast<std::int64_t>(given.size()) != matrix.size())
+    throw Error("CholeskyFactor::analyze: the given order has the wrong size");
+  const int ordering = c.method[0].ordering;
+  c.method[0].ordering = CHOLMOD_GIVEN;
+  state_->symbolic =
+      cholmod_l_analyze_p(&a, const_cast<std::int64_t*>(given.data()), nullptr, 0, &c);
+  c.method[0].ordering = ordering;
+  check(c, state_->symbolic != nullptr, "cholmod_l_analyze_p");
+}
+
+std::vector<std::int64_t> CholeskyFactor::elimination_order() const {
+  if (!state_->symbolic) return {};
+  const auto* perm = static_cast<const std::int64_t*>(state_->symbolic->Perm);
+  return {perm, perm + state_->symbolic->n};
 }
 
 void CholeskyFactor::factorize(StiffnessMatrix& matrix) {

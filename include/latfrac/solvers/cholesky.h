@@ -23,8 +23,13 @@ class CholeskyFactor {
   CholeskyFactor(const CholeskyFactor&) = delete;
   CholeskyFactor& operator=(const CholeskyFactor&) = delete;
 
-  // Fill-reducing ordering and symbolic factorization of the pattern.
-  void analyze(StiffnessMatrix& matrix);
+  // Fill-reducing ordering and symbolic factorization of the pattern. With `given` (a
+  // permutation of 0..n-1, the elimination order) the ordering step is skipped and that
+  // order used (CHOLMOD_GIVEN, postordered).
+  void analyze(StiffnessMatrix& matrix, const std::vector<std::int64_t>& given = {});
+  // The analysis's elimination order (row k of the permuted matrix is row order[k]);
+  // empty before an analysis.
+  std::vector<std::int64_t> elimination_order() const;
   // Numeric factorization (analyzes first if needed). Throws SingularStiffness, naming the
   // column where it showed, when the matrix is not positive definite or singular to
   // working precision: a rigid-body motion or a part of the body without support.

@@ -96,6 +96,10 @@ class EquilibriumSolver {
   // The model's supports changed: rebuilds the stiffness pattern, the analysis and
   // KINSOL's memory.
   void supports_changed();
+  // The last analysis's elimination order restricted to the dofs still free, in the new
+  // numbering; empty (order afresh) on the first analysis or when a dof became free.
+  std::vector<std::int64_t> inherited_order() const;
+  std::vector<std::int64_t> analysed_globals_;  // free index -> global dof at the last analysis
   void refactorize(const Vector& free_displacement, double lambda);
   // The loads on the free dofs at zero free displacement: load0 (gravity and the fixed
   // part of the supports) and load1 (per unit lambda), so that R(0, lambda) = -(load0 +
@@ -104,6 +108,7 @@ class EquilibriumSolver {
   void update_loads();
   void find_boundary_bonds();
   std::vector<std::int64_t> boundary_bonds_;
+  std::vector<std::uint8_t> on_boundary_;  // per bond: in boundary_bonds_
   Vector load0_, load1_;
   bool loads_current_ = false;
   // The relative residual of a free displacement at lambda, max |R| / max |R(0, lambda)|.
