@@ -140,6 +140,10 @@ std::string describe(const Scene& scene) {
   out.section("loading");
   out.entry("mode", "extension");
   out.entry("total", scene.loading.total, "(strain; negative is compression)");
+  if (scene.loading.basal_discontinuity) {
+    out.entry("basal_discontinuity", *scene.loading.basal_discontinuity,
+              "m (the base left of it moves with the left wall, right of it with the right)");
+  }
   out.section("stepping");
   const bool fixed = scene.stepping.method == SteppingMethod::fixed;
   out.entry("method", fixed ? "fixed" : "event");

@@ -301,9 +301,12 @@ void read_effects(const Section& top, Scene& scene) {
 }
 
 void read_loading(const Section& top, Scene& scene) {
-  if (const auto s = top.section("loading", {"mode", "total"})) {
+  if (const auto s = top.section("loading", {"mode", "total", "basal_discontinuity"})) {
     s->choice("mode", {"extension"});
     scene.loading.total = s->number("total", {-0.5, 0.5, false, false, "strain"}, 0.0);
+    const double length = scene.lattice.size[0];
+    scene.loading.basal_discontinuity =
+        s->number("basal_discontinuity", {0, length, true, true, "m"});
   }
   if (const auto s = top.section("stepping", {"method", "increment"})) {
     scene.stepping.method =

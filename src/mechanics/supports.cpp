@@ -35,7 +35,8 @@ const char* to_string(FaceCondition condition) {
   return "unknown";
 }
 
-DofMap build_dof_map(const Lattice& lattice, const std::array<FaceCondition, face_count>& faces) {
+DofMap build_dof_map(const Lattice& lattice, const std::array<FaceCondition, face_count>& faces,
+                     std::optional<double> basal_discontinuity) {
   const std::vector<int> axes = lattice.axes();
   const int dim = lattice.dim;
   DofMap map;
@@ -63,6 +64,16 @@ DofMap build_dof_map(const Lattice& lattice, const std::array<FaceCondition, fac
                                        ? lattice.positions[node][face_axis] - centre[face_axis]
                                        : 0.0;
       }
+    }
+  }
+  if (basal_discontinuity) {
+    const int x = 0;  // the x component is component 0 in 2-D and 3-D
+    for (std::int64_t node = 0; node < lattice.node_count(); ++node) {
+      if (!lattice.on_face(node, Face::z_min)) continue;
+      const std::int64_t dof = node * dim + x;
+      rank[dof] = rank_of(FaceCondition::fixed) + 1;
+      map.prescribed_rate[dof] =
+          lattice.positions[node].x() < *basal_discontinuity ? -centre.x() : centre.x();
     }
   }
   map.free_index.assign(dof_count, -1);

@@ -97,7 +97,7 @@ Model build_model(const Scene& scene, const FailureCriterion* criterion) {
     editor.set_state(b, PairState::open);
   }
 
-  editor.set_dofs(build_dof_map(lattice, scene.faces));
+  editor.set_dofs(build_dof_map(lattice, scene.faces, scene.loading.basal_discontinuity));
   model.external_force = Vector::Zero(model.dofs().dof_count());
   model.node_poisson.resize(lattice.node_count());
   for (std::int64_t n = 0; n < lattice.node_count(); ++n) {

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "latfrac/geometry/lattice.h"
@@ -35,7 +36,11 @@ struct DofMap {
 };
 
 // Builds the supports of a lattice from per-face conditions. Where two faces meet on one
-// component, the most restrictive condition wins.
-DofMap build_dof_map(const Lattice& lattice, const std::array<FaceCondition, face_count>& faces);
+// component, the most restrictive condition wins. With `basal_discontinuity` = x_d (m),
+// the x displacement of every base node (z_min face) is prescribed as well, overriding the
+// base's own condition on x: nodes with X < x_d move with the left wall
+// (-lambda L/2), the others with the right wall (+lambda L/2).
+DofMap build_dof_map(const Lattice& lattice, const std::array<FaceCondition, face_count>& faces,
+                     std::optional<double> basal_discontinuity = std::nullopt);
 
 }  // namespace latfrac

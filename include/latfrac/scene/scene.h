@@ -33,6 +33,10 @@ struct Gravity {
 
 struct Loading {
   double total = 0;  // final extension strain lambda (negative: compression)
+  // x_d (m): the base left of x_d moves with the left wall, right of it with the right
+  // wall (a basal velocity discontinuity, docs/model.md); unset: the base is as its face
+  // condition says.
+  std::optional<double> basal_discontinuity;
 };
 
 struct Contact {
