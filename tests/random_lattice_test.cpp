@@ -6,6 +6,7 @@
 
 #include "latfrac/base/error.h"
 #include "latfrac/geometry/lattice.h"
+#include "latfrac/scene/size_estimate.h"
 
 using namespace latfrac;
 
@@ -173,6 +174,16 @@ TEST_CASE("Random lattice: the mean spacing gives the regular lattice's node den
   }
   CHECK(shortest >= (dim == 2 ? 0.7296 : 0.7415));
   CHECK(longest < 2.1);
+  // The size estimate that `latfrac check` prints (and `run` uses to refuse problems too
+  // large for memory) is close to the lattice actually built, and never short of bonds.
+  Scene scene;
+  scene.lattice = spec;
+  const SizeEstimate estimate = estimate_size(scene);
+  INFO("estimated " << estimate.nodes << " nodes and " << estimate.bonds << " bonds; built "
+                    << lattice.node_count() << " and " << lattice.bond_count());
+  CHECK(std::abs(estimate.nodes - lattice.node_count()) < 0.1 * lattice.node_count());
+  CHECK(estimate.bonds >= lattice.bond_count());
+  CHECK(estimate.bonds < 1.25 * lattice.bond_count());  // small boxes: many face nodes
 }
 
 TEST_CASE("Random lattice: impossible boxes are rejected like regular ones", "[lattice][random]") {
