@@ -15,6 +15,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "latfrac/criteria/criterion.h"
+#include "latfrac/fracture/fracture_run.h"
+#include "latfrac/fracture/initial_supports.h"
+#include "latfrac/scene/model_builder.h"
 #include "latfrac/scene/run.h"
 #include "scenes.h"
 
@@ -75,6 +79,71 @@ inline CrackDirection crack_direction(const RunResult& result) {
   Eigen::Vector2d along = eigen.eigenvectors().col(1);  // the largest spread
   if (along.y() < 0) along = -along;                     // pointing up
   crack.degrees = std::atan2(-along.x(), along.y()) * 180 / std::numbers::pi;
+  return crack;
+}
+
+// A rotated load: the same plate with every face node moved as the uniaxial strain
+// lambda (m (x) m) would move it, m at `load_degrees` from x in the x-z plane, and a
+// slit through the middle perpendicular to m, `notch_length` long. An isotropic body
+// cracks on from both ends of the slit, perpendicular to the load; a lattice with
+// directions of its own can turn the crack towards them. Returns the crack's direction
+// (the broken bonds' principal axis) from the slit's, in degrees, in (-90, 90].
+inline CrackDirection rotated_load_crack(LatticeKind kind, double load_degrees,
+                                         std::uint64_t seed) {
+  Scene scene = notched_plate(kind, 0.0, seed);
+  scene.precuts.clear();
+  const double angle = load_degrees * std::numbers::pi / 180;
+  const Vec3 load(std::cos(angle), 0, std::sin(angle)), along(-std::sin(angle), 0, std::cos(angle));
+  const Vec3 centre(plate_size / 2 + 0.25, 0, plate_size / 2 + 0.25);
+  const Vec3 from = centre - notch_length / 2 * along, to = centre + notch_length / 2 * along;
+  scene.precuts.push_back({{from.x(), 0, from.z()}, {to.x(), 0, to.z()}, {}, {}, {}});
+  const std::shared_ptr<const FailureCriterion> criterion =
+      make_criterion(*scene.strength, scene.lattice.dim);
+  Model model = build_model(scene, criterion.get());
+  const Lattice& lattice = model.lattice;
+  std::array<FaceCondition, face_count> faces;
+  faces.fill(FaceCondition::fixed);
+  DofMap dofs = build_dof_map(lattice, faces);
+  const Vec3 middle = lattice.extent / 2;
+  for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
+    const Vec3 rate = load * load.dot(lattice.positions[n] - middle);  // per unit lambda
+    if (dofs.free_index[2 * n] < 0) dofs.prescribed_rate[2 * n] = rate.x();
+    if (dofs.free_index[2 * n + 1] < 0) dofs.prescribed_rate[2 * n + 1] = rate.z();
+  }
+  ModelEditor(model).set_dofs(dofs);
+  RunResult result;
+  record_lattice(model, result);
+  result.fragments = prepare_supports(model, "rotated load");
+  EquilibriumSolver solver(model, scene.solver);
+  ProgressLine progress(false);
+  FractureRun fracture(model, criterion, scene.strength->bond_stress,
+                       {scene.loading.total, scene.stepping, {}}, scene.solver, solver, progress,
+                       result);
+  fracture.run();
+
+  std::vector<Eigen::Vector2d> points;
+  for (const BreakEvent& event : result.events) {
+    if (event.mode == BreakMode::precut) continue;
+    const Bond& bond = lattice.bonds[event.bond];
+    const Vec3 mid = 0.5 * (lattice.positions[bond.i] + lattice.positions[bond.j]);
+    points.emplace_back(mid.x(), mid.z());
+  }
+  CrackDirection crack;
+  crack.bonds = static_cast<int>(points.size());
+  if (points.size() < 2) return crack;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (const auto& p : points) scatter += (p - mean) * (p - mean).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(scatter);
+  const Eigen::Vector2d axis = eigen.eigenvectors().col(1);
+  // The signed angle from the slit's direction to the axis, folded into (-90, 90].
+  double degrees = (std::atan2(axis.y(), axis.x()) - std::atan2(along.z(), along.x())) * 180 /
+                   std::numbers::pi;
+  while (degrees > 90) degrees -= 180;
+  while (degrees <= -90) degrees += 180;
+  crack.degrees = degrees;
   return crack;
 }
 
