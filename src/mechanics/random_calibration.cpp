@@ -1,4 +1,4 @@
-// (E, nu) -> (En, alpha) for random lattices, from the measured table.
+// Random lattices' spring parameters: (E, nu) -> (En, alpha) from the measured table.
 #include "latfrac/mechanics/random_calibration.h"
 
 #include <algorithm>
