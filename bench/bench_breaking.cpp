@@ -1,15 +1,17 @@
 // Benchmark of one break in a cascade: factor downdate + re-solve at the cascade's lambda
 // (one right-hand side, with its residual check) +
 // criterion evaluation, against a full refactorization; and the criterion evaluation of
-// every bond against one re-solve. Prints a table.
+// every bond against one re-solve; and the time to build the lattice. Prints a table.
 //
-//   build/bench/bench_breaking              # 2-D 100k and 3-D 50k nodes
+//   build/bench/bench_breaking              # 2-D 100k and 3-D 50k nodes, regular and random
 //   build/bench/bench_breaking 3 10000      # one case: dim and approximate node count
 //   build/bench/bench_breaking 2 100000 nesdis   # ... and the fill-reducing ordering
+//   build/bench/bench_breaking 2 100000 metis random   # ... and the lattice kind only
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <string>
 
 #include "bench_cases.h"
@@ -28,10 +30,12 @@ double seconds_since(Clock::time_point start) {
 }
 
 // The paper's crust with the elliptic criterion, about `nodes` nodes, a = 100 m.
-Scene bench_scene(int dim, long nodes) {
+Scene bench_scene(int dim, long nodes, LatticeKind kind) {
   Scene scene;
   scene.name = "bench";
   scene.lattice.dim = dim;
+  scene.lattice.kind = kind;
+  scene.lattice.seed = 1;
   scene.lattice.spacing = 100.0;
   scene.material = {2600.0, 100e9, 0.2};
   scene.gravity = Gravity{9.81};
@@ -51,16 +55,22 @@ Scene bench_scene(int dim, long nodes) {
   return scene;
 }
 
-void run_case(int dim, long nodes, Ordering ordering) {
-  Scene scene = bench_scene(dim, nodes);
+void run_case(int dim, long nodes, Ordering ordering, LatticeKind kind) {
+  Scene scene = bench_scene(dim, nodes, kind);
   scene.solver.ordering = ordering;
+  auto start = Clock::now();
+  const std::clock_t cpu_start = std::clock();
+  build_lattice(scene.lattice);
+  const double construction = seconds_since(start);  // the lattice alone, as build_model does
+  // Its processor time too: on a shared machine the wall time can be several times longer.
+  const double construction_cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   Model model = build_model(scene);
   EquilibriumSolver solver(model, scene.solver);
   const FailureEvaluator evaluator(*scene.strength, model);
   const double lambda = 1e-4;
 
   AffinePath path = solver.affine_path();  // analysis + supernodal factorization
-  auto start = Clock::now();
+  start = Clock::now();
   solver.discard_factor();
   path = solver.affine_path();
   const double refactorization = seconds_since(start);  // assemble + factorize + 2-RHS solve
@@ -95,8 +105,10 @@ void run_case(int dim, long nodes, Ordering ordering) {
   evaluate /= breaks;
   const double per_break = update + resolve + evaluate;
   std::printf(
-      "| %d-D | %8ld | %9.3f | %9.4f | %9.4f | %9.4f | %9.4f | %6.1f %% | %9.4f | %6.1f %% |\n",
-      dim, static_cast<long>(model.lattice.node_count()), refactorization, update, resolve,
+      "| %d-D | %-10s | %8ld | %8ld | %7.3f | %7.3f | %9.3f | %9.4f | %9.4f | %9.4f | %9.4f | %6.1f %% | "
+      "%9.4f | %6.1f %% |\n",
+      dim, lattice_kind_name(dim, kind), static_cast<long>(model.lattice.node_count()),
+      static_cast<long>(model.lattice.bond_count()), construction, construction_cpu, refactorization, update, resolve,
       evaluate, per_break, 100 * per_break / refactorization, criterion, 100 * criterion / resolve);
   std::fflush(stdout);
 }
@@ -105,19 +117,32 @@ void run_case(int dim, long nodes, Ordering ordering) {
 
 int main(int argc, char** argv) {
   std::printf(
-      "| dim | nodes | refactorize s | update s | re-solve + check s | criterion s | per break s "
-      "| break / refactorize | all-bond criterion s | criterion / re-solve |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+      "| dim | lattice | nodes | bonds | build s | build cpu s | refactorize s | update s | re-solve + check s "
+      "| criterion s | per break s | break / refactorize | all-bond criterion s | criterion / "
+      "re-solve |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::fflush(stdout);
   std::vector<std::pair<int, long>> cases = {{2, 100000}, {3, 50000}};
   if (argc >= 3) cases = {{std::stoi(argv[1]), std::stol(argv[2])}};
-  const std::string name = argc == 4 ? argv[3] : "metis";
+  const std::string name = argc >= 4 ? argv[3] : "metis";
   const Ordering ordering = name == "nesdis" ? Ordering::nesdis
                             : name == "amd"  ? Ordering::amd
                                              : Ordering::metis;
-  bench::run_each_in_child(cases, [&](int dim, long nodes) { run_case(dim, nodes, ordering); });
+  const std::string only = argc >= 5 ? argv[4] : "";
+  std::vector<LatticeKind> kinds;
+  if (only != "random") kinds.push_back(LatticeKind::regular);
+  if (only != "regular") kinds.push_back(LatticeKind::random);
+  for (const auto& one_case : cases) {
+    for (const LatticeKind kind : kinds) {
+      bench::run_each_in_child({one_case}, [&](int dim, long nodes) {
+        run_case(dim, nodes, ordering, kind);
+      });
+    }
+  }
   std::printf(
       "\nper break = factor downdate + re-solve at lambda with its residual check "
-      "+ criterion of every bond; refactorize = assembly + numeric factorization + solve.\n");
+      "+ criterion of every bond; refactorize = assembly + numeric factorization + solve;\n"
+      "build = the lattice alone (positions, bonds, faces; for a random lattice the sampling,\n"
+      "the Delaunay triangulation and the Voronoi facets).\n");
   return 0;
 }

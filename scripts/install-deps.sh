@@ -9,6 +9,7 @@ packages=(
   libsuitesparse-dev         # CHOLMOD sparse Cholesky (with METIS)
   libopenblas0-pthread       # fast BLAS for CHOLMOD's supernodal kernels
   libeigen3-dev
+  libcgal-dev                # random lattices: Delaunay triangulations (with GMP, MPFR, Boost)
   libhdf5-dev                # result files
   catch2                     # unit tests (v2)
   libtomlplusplus-dev        # problem files

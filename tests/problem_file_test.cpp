@@ -168,7 +168,7 @@ TEST_CASE("absent sections leave their effects off and defaults apply", "[io]") 
 TEST_CASE("an unknown key or section names the closest valid one", "[io]") {
   CHECK(error_of(with(minimal, "spacing", "spaceing")) ==
         "t.toml:4: lattice.spaceing: unknown key (did you mean 'spacing'?); "
-        "allowed in [lattice]: dim, spacing, size, next_nearest");
+        "allowed in [lattice]: dim, kind, spacing, size, next_nearest, seed");
   CHECK_THAT(error_of(with(minimal, "young", "yng")), Contains("did you mean 'young'?"));
   CHECK_THAT(error_of(with(minimal, "spacing", "sp")), Contains("did you mean 'spacing'?"));
   CHECK_THAT(error_of(with(minimal, "density", "colour")),
@@ -276,7 +276,7 @@ TEST_CASE("Overrides (--set) are applied and then validated", "[io]") {
         "--set lattice.spacing: lattice.spacing: -1 is out of range; allowed: spacing > 0 (m)");
   CHECK(error_of(minimal, {"lattice.spaceing=3"}) ==
         "--set lattice.spaceing: lattice.spaceing: unknown key (did you mean 'spacing'?); "
-        "allowed in [lattice]: dim, spacing, size, next_nearest");
+        "allowed in [lattice]: dim, kind, spacing, size, next_nearest, seed");
   CHECK_THAT(error_of(minimal, {"latice.spacing=3"}),
              StartsWith("--set latice.spacing: latice: unknown section [latice] (did you mean "
                         "[lattice]?)"));
@@ -408,4 +408,30 @@ TEST_CASE("the example problems are valid", "[io]") {
     CHECK(scene.material.poisson == 0.2);
     CHECK(scene.loading.total == 0);
   }
+}
+
+TEST_CASE("[lattice] kind and seed: random lattices, their keys and their range of nu", "[io]") {
+  const std::string random =
+      with(minimal, "spacing = 500", "kind = \"random\"\nseed = 42\nspacing = 500");
+  const latfrac::Scene scene = parse_problem(random, "t.toml");
+  CHECK(scene.lattice.kind == latfrac::LatticeKind::random);
+  CHECK(scene.lattice.seed == 42);
+  CHECK(parse_problem(minimal, "t.toml").lattice.kind == latfrac::LatticeKind::regular);
+  CHECK(parse_problem(with(minimal, "spacing = 500", "kind = \"triangular\"\nspacing = 500"),
+                      "t.toml")
+            .lattice.kind == latfrac::LatticeKind::regular);
+  // A random 2-D lattice reaches nu = 0.3 (up to 0.326); a regular one stops at 1/4.
+  CHECK(parse_problem(with(random, "poisson = 0.2", "poisson = 0.3"), "t.toml").material.poisson ==
+        0.3);
+  CHECK_THAT(error_of(with(random, "poisson = 0.2", "poisson = 0.33")),
+             Contains("material.poisson: 0.33 is too large: a random 2-D lattice reaches nu = 0.3257"));
+  CHECK_THAT(error_of(with(random, "poisson = 0.2", "poisson = -0.1")),
+             Contains("material.poisson: -0.1 is too small"));
+  CHECK_THAT(error_of(with(minimal, "spacing = 500", "kind = \"hcp\"\nspacing = 500")),
+             Contains("lattice.kind: \"hcp\" is a 3-D lattice"));
+  CHECK_THAT(error_of(with(minimal, "spacing = 500", "seed = 3\nspacing = 500")),
+             Contains("lattice.seed: only applies to a random lattice"));
+  CHECK_THAT(error_of(with(minimal, "spacing = 500", "kind = \"voronoi\"\nspacing = 500")),
+             Contains("lattice.kind"));
+  CHECK_THAT(error_of(with(random, "seed = 42", "seed = -1")), Contains("lattice.seed"));
 }

@@ -1,4 +1,5 @@
-// Builds triangular (2-D) and HCP (3-D) lattices in a box, with bonds and face membership.
+// Builds triangular (2-D) and HCP (3-D) lattices in a box, or random ones, with bonds and
+// face membership.
 #include "latfrac/geometry/lattice.h"
 
 #include <cmath>
@@ -6,6 +7,7 @@
 #include <unordered_map>
 
 #include "latfrac/base/error.h"
+#include "random_lattice.h"
 
 namespace latfrac {
 namespace {
@@ -141,10 +143,8 @@ std::vector<Bond> find_bonds(const std::vector<Vec3>& positions, double a, bool 
   return bonds;
 }
 
-}  // namespace
-
-Lattice build_lattice(const LatticeSpec& spec) {
-  validate(spec);
+// The triangular or HCP lattice's nodes and bonds.
+Lattice regular_lattice(const LatticeSpec& spec) {
   const Grid grid = grid_of(spec);
   Lattice lattice;
   lattice.dim = spec.dim;
@@ -155,11 +155,20 @@ Lattice build_lattice(const LatticeSpec& spec) {
   const double a = spec.spacing;
   lattice.node_volume = spec.dim == 2 ? std::sqrt(3.0) / 2 * a * a : a * a * a / std::sqrt(2.0);
   lattice.positions = place_nodes(spec, grid, lattice.extent);
+  lattice.bonds = find_bonds(lattice.positions, a, spec.dim == 3 && spec.next_nearest);
+  return lattice;
+}
+
+}  // namespace
+
+Lattice build_lattice(const LatticeSpec& spec) {
+  validate(spec);
+  Lattice lattice =
+      spec.kind == LatticeKind::random ? build_random_lattice(spec) : regular_lattice(spec);
   lattice.face_mask.reserve(lattice.positions.size());
   for (const Vec3& p : lattice.positions) {
-    lattice.face_mask.push_back(faces_of(p, lattice.extent, spec.dim, a));
+    lattice.face_mask.push_back(faces_of(p, lattice.extent, spec.dim, spec.spacing));
   }
-  lattice.bonds = find_bonds(lattice.positions, a, spec.dim == 3 && spec.next_nearest);
   lattice.bond_direction.reserve(lattice.bonds.size());
   lattice.bond_length.reserve(lattice.bonds.size());
   for (const Bond& bond : lattice.bonds) {
@@ -168,6 +177,11 @@ Lattice build_lattice(const LatticeSpec& spec) {
     lattice.bond_direction.push_back(d0.normalized());
   }
   return lattice;
+}
+
+const char* lattice_kind_name(int dim, LatticeKind kind) {
+  if (kind == LatticeKind::random) return "random";
+  return dim == 2 ? "triangular" : "hcp";
 }
 
 const char* to_string(Face face) {

@@ -106,11 +106,17 @@ std::string describe(const Scene& scene) {
 
   const LatticeSpec& lattice = scene.lattice;
   out.section("lattice");
-  out.entry("dim", std::to_string(dim),
-            dim == 2 ? "(triangular, plane-strain x-z section)" : "(hexagonal close packed)");
-  out.entry("spacing", lattice.spacing, "m");
+  const bool random = lattice.kind == LatticeKind::random;
+  out.entry("dim", std::to_string(dim), dim == 2 ? "(plane-strain x-z section)" : "(a block)");
+  out.entry("kind", lattice_kind_name(dim, lattice.kind),
+            random ? "(Poisson-disk points, Delaunay bonds)"
+                   : (dim == 2 ? "(triangular)" : "(hexagonal close packed)"));
+  out.entry("spacing", lattice.spacing, random ? "m (mean)" : "m");
   out.entry("size", point(lattice.size, dim), dim == 2 ? "m (x, z)" : "m (x, y, z)");
-  out.entry("next_nearest", dim == 2 ? "not used in 2-D" : on_off(lattice.next_nearest));
+  out.entry("next_nearest", dim == 2  ? "not used in 2-D"
+                            : random ? "not used by a random lattice"
+                                     : on_off(lattice.next_nearest));
+  out.entry("seed", random ? std::to_string(lattice.seed) : "not used by a regular lattice");
 
   out.section("material");
   out.entry("density", scene.material.density, "kg/m^3");

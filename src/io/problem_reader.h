@@ -109,6 +109,12 @@ class Section {
   std::vector<std::string_view> keys_;
 };
 
+// The [lattice] section (problem_lattice.cpp).
+LatticeSpec read_lattice(const Section& top);
+// The Poisson's ratios the lattice can represent, and why no others (problem_lattice.cpp).
+Range poisson_range(const LatticeSpec& lattice);
+std::string poisson_limit_reason(const LatticeSpec& lattice);
+
 // The [output] section: snapshots and the picture of the final state (problem_output.cpp).
 void read_output(const Section& top, Scene& scene);
 

@@ -10,8 +10,6 @@
 namespace latfrac::problem {
 namespace {
 
-const Range poisson_range{-1, 0.25, true, false, ""};
-
 std::string coordinates(const std::array<double, 3>& point, int dim) {
   std::string text = "(";
   text.append(format_number(point[0]));
@@ -36,62 +34,37 @@ std::string read_name(const Section& top) {
   return name;
 }
 
-LatticeSpec read_lattice(const Section& top) {
-  const Section s = top.required_section("lattice", {"dim", "spacing", "size", "next_nearest"});
-  LatticeSpec lattice;
-  if (!s.has("dim")) s.fail_missing("dim", "allowed: 2 (an x-z section) or 3");
-  lattice.dim = static_cast<int>(*s.integer("dim", 2, 3));
-  lattice.spacing = s.required_number("spacing", positive("m"));
-
-  const bool flat = lattice.dim == 2;
-  const std::string shape = flat ? "[Lx, Lz] (lattice.dim = 2)" : "[Lx, Ly, Lz] (lattice.dim = 3)";
-  if (!s.has("size")) s.fail_missing("size", "allowed: size = " + shape + " in m");
-  const std::vector<double> size = *s.numbers("size", positive("m"), lattice.dim, shape);
-  lattice.size = flat ? std::array{size[0], 0.0, size[1]} : std::array{size[0], size[1], size[2]};
-  for (const double extent : size) {
-    if (extent < 2 * lattice.spacing) {
-      s.fail("size",
-             "extent " + format_number(extent) + " m is less than 2 spacings (" +
-                 format_number(2 * lattice.spacing) + " m)",
-             "allowed: each extent >= 2 * lattice.spacing");
-    }
-  }
-
-  if (flat && s.has("next_nearest")) {
-    s.fail("next_nearest", "only applies in 3-D (the 2-D lattice has nearest-neighbour bonds only)",
-           "allowed: remove it, or set lattice.dim = 3");
-  }
-  lattice.next_nearest = s.boolean("next_nearest").value_or(true);
-  return lattice;
-}
-
-std::optional<double> read_poisson(const Section& s) {
+std::optional<double> read_poisson(const Section& s, const LatticeSpec& lattice) {
+  const Range range = poisson_range(lattice);
   // Non-finite values are named with nu's own range, not the generic "a finite number".
   if (const toml::node* node = s.find("poisson"); node && node->is_floating_point()) {
     const double value = node->as_floating_point()->get();
     if (!std::isfinite(value)) {
       s.fail("poisson", "must be finite, got " + format_number(value),
-             "allowed: " + poisson_range.describe("poisson"));
+             "allowed: " + range.describe("poisson"));
     }
   }
   const std::optional<double> nu = s.number("poisson", any_finite());
-  if (nu && *nu > 0.25) {
+  if (nu && *nu > range.max) {
     s.fail("poisson",
-           format_number(*nu) +
-               " is too large: the lattice's shear springs would be negative "
-               "(ks < 0), so nu must be at most 1/4",
-           "allowed: " + poisson_range.describe("poisson"));
+           format_number(*nu) + " is too large: " + poisson_limit_reason(lattice),
+           "allowed: " + range.describe("poisson"));
   }
-  return s.number("poisson", poisson_range);
+  if (nu && *nu < range.min && lattice.kind == LatticeKind::random) {
+    s.fail("poisson", format_number(*nu) + " is too small: " + poisson_limit_reason(lattice),
+           "allowed: " + range.describe("poisson"));
+  }
+  return s.number("poisson", range);
 }
 
-Material read_material(const Section& top) {
+Material read_material(const Section& top, const LatticeSpec& lattice) {
   const Section s = top.required_section("material", {"density", "young", "poisson"});
   Material material;
   material.density = s.required_number("density", positive("kg/m^3"));
   material.young = s.required_number("young", positive("Pa"));
-  if (!s.has("poisson")) s.fail_missing("poisson", "allowed: " + poisson_range.describe("poisson"));
-  material.poisson = *read_poisson(s);
+  if (!s.has("poisson"))
+    s.fail_missing("poisson", "allowed: " + poisson_range(lattice).describe("poisson"));
+  material.poisson = *read_poisson(s, lattice);
   return material;
 }
 
@@ -252,7 +225,7 @@ std::vector<Layer> read_layers(const Section& top, const Scene& scene) {
     layer.material = scene.material;
     layer.material.density = s.number("density", positive("kg/m^3"), scene.material.density);
     layer.material.young = s.number("young", positive("Pa"), scene.material.young);
-    layer.material.poisson = read_poisson(s).value_or(scene.material.poisson);
+    layer.material.poisson = read_poisson(s, scene.lattice).value_or(scene.material.poisson);
     layer.sigma0 = s.number("sigma0", positive("Pa"));
     layer.tau0 = s.number("tau0", positive("Pa"));
     for (const std::string_view key : {"sigma0", "tau0"}) {
@@ -355,7 +328,7 @@ Scene read_scene(const Origin& origin, const toml::table& root) {
   scene.name = read_name(top);
   scene.description = top.string("description").value_or("");
   scene.lattice = read_lattice(top);
-  scene.material = read_material(top);
+  scene.material = read_material(top, scene.lattice);
   read_boundary(top, scene.lattice.dim, scene);
   scene.strength = read_strength(top);
   read_effects(top, scene);

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "latfrac/base/error.h"
+#include "latfrac/mechanics/random_calibration.h"
 
 namespace latfrac {
 namespace {
@@ -34,6 +35,14 @@ void validate_material(const Material& material, const char* where) {
             << " is outside -1 < nu <= 0.25; above 1/4 the lattice's shear springs would be "
                "negative (ks < 0)";
     throw InputError(message.str());
+  }
+}
+
+void validate_material(const Material& material, int dim, LatticeKind kind, const char* where) {
+  if (kind == LatticeKind::random) {
+    random_spring_parameters(dim, material, where);
+  } else {
+    validate_material(material, where);
   }
 }
 

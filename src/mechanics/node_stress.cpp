@@ -1,26 +1,45 @@
-// Virial node stresses.
+// Virial node stresses: the branch form on regular lattices, the facet-centroid form on
+// random ones.
 #include "latfrac/mechanics/node_stress.h"
 
 namespace latfrac {
+namespace {
 
-std::vector<double> node_stresses(const Model& model, const Vector& displacement) {
+// Per node, the sum over its intact bonds of arm (x) force.
+std::vector<Mat3> bond_dyads(const Model& model, const Vector& displacement) {
   const Lattice& lattice = model.lattice;
-  std::vector<Mat3> stress(lattice.node_count(), Mat3::Zero());
+  std::vector<Mat3> sum(lattice.node_count(), Mat3::Zero());
   for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
     if (!model.intact(b)) continue;
     const Bond& bond = lattice.bonds[b];
-    const Vec3 d0 = lattice.bond_direction[b] * lattice.bond_length[b];
     const Vec3 du = model.node_displacement(displacement, bond.j) -
                     model.node_displacement(displacement, bond.i);
     const Vec3 t = model.bond_law().tension(model.springs(b), PairState::intact, du);
+    if (lattice.is_random()) {
+      // t acts on i, -t on j; each node's arm reaches to the facet's centroid.
+      const Vec3& centroid = lattice.bond_facet_centroid[b];
+      sum[bond.i] += (centroid - lattice.positions[bond.i]) * t.transpose();
+      sum[bond.j] += (lattice.positions[bond.j] - centroid) * t.transpose();
+      continue;
+    }
+    const Vec3 d0 = lattice.bond_direction[b] * lattice.bond_length[b];
     const Mat3 dyad = d0 * t.transpose();
-    stress[bond.i] += dyad;
-    stress[bond.j] += dyad;
+    sum[bond.i] += dyad;
+    sum[bond.j] += dyad;
   }
+  return sum;
+}
+
+}  // namespace
+
+std::vector<double> node_stresses(const Model& model, const Vector& displacement) {
+  const Lattice& lattice = model.lattice;
+  const std::vector<Mat3> sum = bond_dyads(model, displacement);
   std::vector<double> voigt(lattice.node_count() * 6);
   const double scale = 1.0 / (2 * lattice.node_volume);
   for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
-    const Mat3 s = 0.5 * scale * (stress[n] + stress[n].transpose());
+    const double weight = lattice.is_random() ? 1.0 / lattice.node_volumes[n] : scale;
+    const Mat3 s = 0.5 * weight * (sum[n] + sum[n].transpose());
     double* v = &voigt[n * 6];
     v[0] = s(0, 0);
     v[2] = s(2, 2);

@@ -8,6 +8,7 @@
 #include "latfrac/criteria/criterion.h"
 #include "latfrac/geometry/precut.h"
 #include "latfrac/mechanics/calibration.h"
+#include "latfrac/mechanics/random_calibration.h"
 
 namespace latfrac {
 namespace {
@@ -69,10 +70,12 @@ Model build_model(const Scene& scene) {
 }
 
 Model build_model(const Scene& scene, const FailureCriterion* criterion) {
-  validate_material(scene.material);
-  for (const Layer& layer : scene.layers) validate_material(layer.material, "layer");
+  const LatticeSpec& spec = scene.lattice;
+  validate_material(scene.material, spec.dim, spec.kind);
+  for (const Layer& layer : scene.layers)
+    validate_material(layer.material, spec.dim, spec.kind, "layer");
   Model model;
-  model.lattice = build_lattice(scene.lattice);
+  model.lattice = build_lattice(spec);
   const Lattice& lattice = model.lattice;
   const int dim = lattice.dim;
 
@@ -81,10 +84,27 @@ Model build_model(const Scene& scene, const FailureCriterion* criterion) {
   model.shear_stiffness.resize(bonds);
   ModelEditor editor(model);
   editor.reset_states();
+  // A random lattice's (En, alpha), once per material (the scene's and each layer's).
+  std::vector<std::pair<const Material*, RandomSpringParameters>> random_springs;
+  const auto random_springs_of = [&](const Material& material) {
+    for (const auto& [known, parameters] : random_springs)
+      if (known == &material) return parameters;
+    random_springs.emplace_back(&material, random_spring_parameters(dim, material));
+    return random_springs.back().second;
+  };
   for (std::int64_t b = 0; b < bonds; ++b) {
     const Bond& bond = lattice.bonds[b];
     const double mid_z = 0.5 * (lattice.positions[bond.i].z() + lattice.positions[bond.j].z());
-    const SpringConstants k = spring_constants(dim, material_at(scene, mid_z), lattice.spacing);
+    const Material& material = material_at(scene, mid_z);
+    if (lattice.is_random()) {
+      // kn = En A / L, ks = alpha kn (random_calibration.h).
+      const RandomSpringParameters p = random_springs_of(material);
+      model.normal_stiffness[b] =
+          p.normal_modulus * lattice.bond_facet_area[b] / lattice.bond_length[b];
+      model.shear_stiffness[b] = p.shear_ratio * model.normal_stiffness[b];
+      continue;
+    }
+    const SpringConstants k = spring_constants(dim, material, lattice.spacing);
     const double scale = bond.kind == BondKind::next_nearest ? next_nearest_fraction : 1.0;
     model.normal_stiffness[b] = scale * k.normal;
     model.shear_stiffness[b] = scale * k.shear;
@@ -106,7 +126,7 @@ Model build_model(const Scene& scene, const FailureCriterion* criterion) {
     if (scene.gravity) {
       const int z_component = dim - 1;
       model.external_force[n * dim + z_component] =
-          -material.density * scene.gravity->g * lattice.node_volume;
+          -material.density * scene.gravity->g * lattice.volume_of(n);
     }
   }
   std::unique_ptr<BondLaw> bond_law;

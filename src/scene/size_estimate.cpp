@@ -21,7 +21,13 @@ SizeEstimate estimate_size(const Scene& scene) {
   const double columns = spec.dim == 2 ? 1.0 : spec.size[1] / (std::sqrt(3.0) / 2 * a) + 1;
   SizeEstimate estimate;
   estimate.nodes = rows * per_row * columns;
-  estimate.bonds = (spec.dim == 2 ? 3.0 : spec.next_nearest ? 9.0 : 6.0) * estimate.nodes;
+  // A random lattice has the regular one's number density (poisson_disk.h), so the same
+  // count; its bonds are Delaunay edges, 3 per node in 2-D (Euler) and about 7.5 in 3-D
+  // (15 neighbours inside), counted at 7.75.
+  const bool random = spec.kind == LatticeKind::random;
+  const double bonds_per_node =
+      spec.dim == 2 ? 3.0 : random ? 7.75 : spec.next_nearest ? 9.0 : 6.0;
+  estimate.bonds = bonds_per_node * estimate.nodes;
   estimate.unknowns = estimate.nodes * spec.dim;
   const double n = estimate.unknowns;
   estimate.factor_nonzeros =

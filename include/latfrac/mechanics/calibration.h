@@ -6,7 +6,8 @@
 //     kn = (2/sqrt 3)(lambda + mu),  ks = (2/sqrt 3)(mu - lambda)
 //   3-D HCP, nearest neighbours (next-nearest bonds get a quarter of each):
 //     kn = (sqrt 2 / 5) E a / (1 - 2 nu),  ks = kn (1 - 4 nu) / (1 + nu)
-// Both need ks >= 0, i.e. nu <= 1/4; docs/model.md derives them.
+// Both need ks >= 0, i.e. nu <= 1/4; docs/model.md derives them. Random lattices have
+// their own calibration (random_calibration.h).
 #pragma once
 
 #include <Eigen/Core>
@@ -23,6 +24,10 @@ struct SpringConstants {
 
 // Throws InputError when nu is outside (-1, 1/4] or E is not positive.
 void validate_material(const Material& material, const char* where = "material");
+// The same for a lattice of the given kind: a random lattice takes 0 <= nu <= its largest
+// (random_lattice_max_poisson).
+void validate_material(const Material& material, int dim, LatticeKind kind,
+                       const char* where = "material");
 
 // The nearest-neighbour constants; next-nearest bonds take a quarter of each.
 SpringConstants spring_constants(int dim, const Material& material, double spacing);

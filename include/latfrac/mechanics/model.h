@@ -41,13 +41,15 @@ class Model {
   const std::vector<PairState>& pair_states() const { return states_; }
   // Per bond, 1 while intact: the result files' bond_intact.
   std::vector<std::uint8_t> intact_flags() const;
-  // Contact (when the scene names it): a broken nearest-neighbour or pre-cut bond keeps a
-  // compression-only normal spring kn, frictionless (contact_law.h).
+  // Contact (when the scene names it): a broken nearest-neighbour, Delaunay (random
+  // lattice) or pre-cut bond keeps a compression-only normal spring kn, frictionless
+  // (contact_law.h).
   bool has_contact() const { return contact_law_ != nullptr; }
-  // Can bond b's faces touch once it is broken (a nearest-neighbour or pre-cut bond, in a
-  // scene with contact)?
+  // Can bond b's faces touch once it is broken (a nearest-neighbour, Delaunay or pre-cut
+  // bond, in a scene with contact)?
   bool can_touch(std::int64_t bond) const {
-    return has_contact() && (lattice.bonds[bond].kind == BondKind::nearest || precut[bond]);
+    return has_contact() &&
+           (lattice.bonds[bond].kind != BondKind::next_nearest || precut[bond]);
   }
   // Is bond b broken and able to touch (so its contact law acts)?
   bool contact_capable(std::int64_t bond) const { return !intact(bond) && can_touch(bond); }
