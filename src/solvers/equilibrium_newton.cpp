@@ -162,6 +162,7 @@ EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacem
   check_flag(KINSetFuncNormTol(k.memory, options_.tolerance), "KINSetFuncNormTol");
   check_flag(KINSetNumMaxIters(k.memory, options_.max_iterations), "KINSetNumMaxIters");
   // A linear problem whose factor is current needs no new factorization.
+  discard_weak_updates();
   const bool reuse = model_.is_linear() && factor_current_;
   check_flag(KINSetNoInitSetup(k.memory, reuse ? SUNTRUE : SUNFALSE), "KINSetNoInitSetup");
   // Exact Newton (a fresh tangent every iteration) on a nonlinear problem; a linear one
