@@ -182,8 +182,6 @@ void CholeskyFactor::factorize(StiffnessMatrix& matrix) {
   // body passes it: at nu = 1/4 (no shear springs) a piece that hangs on one node turns
   // about it with a pivot of 1e-13 of its own diagonal and an rcond of 2e-14 to 1e-10.
   weakest_ = find_weakest_pivot(matrix);
-  record_diagonal(matrix);
-  pivots_checked_ = true;
   if (weakest_.position >= 0 && weakest_.ratio < near_mechanism_pivot) {
     const NullMode mode = null_mode(matrix);
     if (weakest_.ratio > mechanism_pivot && !mode.rounding()) {
@@ -329,8 +327,6 @@ void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
     }
   }
   p[columns.size()] = k;
-  for (std::int64_t e = 0; e < k; ++e)
-    diagonal_[i[e]] += downdate ? -x[e] * x[e] : x[e] * x[e];
   const int ok = cholmod_l_updown(downdate ? 0 : 1, update_matrix, factor, &c);
   const int status = c.status;
   cholmod_l_free_sparse(&update_matrix, &c);
@@ -341,45 +337,6 @@ void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
         "the body can move without resistance");
   }
   check(c, ok, "cholmod_l_updown");
-  pivots_checked_ = false;
-}
-
-void CholeskyFactor::record_diagonal(StiffnessMatrix& matrix) {
-  const cholmod_factor& f = *state_->factor;
-  const auto* perm = static_cast<const std::int64_t*>(f.Perm);
-  const std::vector<std::int64_t>& start = matrix.column_start();
-  const std::vector<std::int64_t>& row = matrix.row_index();
-  const std::vector<double>& value = matrix.values();
-  diagonal_.assign(f.n, 0.0);
-  for (std::size_t k = 0; k < f.n; ++k) {
-    const std::int64_t column = perm[k];
-    const std::int64_t last = start[column + 1] - 1;
-    if (last >= start[column] && row[last] == column) diagonal_[k] = value[last];
-  }
-  fresh_diagonal_ = diagonal_;
-}
-
-// Updates keep the factor's pivots without the test factorize() makes: a downdate that
-// leaves a mechanism can leave a pivot at rounding level (0 or -2e-16 of its diagonal were
-// measured). So before the updated factor solves, its simplicial pivots D(k,k) are compared
-// with K's diagonal, kept up to date from the updates' columns (a diagonal that cancels to
-// 1e-12 of its value at the factorization counts as zero). Checked at the solve, not after
-// each update: a break into a closed contact takes the bond out before the contact spring
-// goes in, and the mechanism between the two is not one. O(n), once per updated solve.
-bool CholeskyFactor::updates_left_weak_pivot() {
-  if (pivots_checked_ || !factorized_) return false;
-  const cholmod_factor& f = *state_->factor;
-  if (f.is_super) return false;
-  const auto* start = static_cast<const std::int64_t*>(f.p);
-  const auto* d = static_cast<const double*>(f.x);
-  for (std::size_t k = 0; k < f.n; ++k) {
-    if (!(fresh_diagonal_[k] > 0)) continue;
-    const double diagonal = diagonal_[k];
-    const bool cancelled = !(diagonal > 1e-12 * fresh_diagonal_[k]);
-    if (cancelled || !(d[start[k]] >= near_mechanism_pivot * diagonal)) return true;
-  }
-  pivots_checked_ = true;
-  return false;
 }
 
 namespace {

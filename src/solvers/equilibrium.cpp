@@ -4,6 +4,7 @@
 #include "latfrac/solvers/equilibrium.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -68,15 +69,6 @@ void EquilibriumSolver::update_factor(std::int64_t bond, const std::vector<RankO
   ++counters_.factor_updates;
   ++updates_since_factorization_;
   if (last_solution_valid_) record_force_change(bond, terms, downdate);
-}
-
-// An updated factor with a pivot at the level of a mechanism is not solved with: the
-// fresh factorization tests it (docs/robustness.md).
-void EquilibriumSolver::discard_weak_updates() {
-  if (factor_current_ && updates_since_factorization_ > 0 && factor_.updates_left_weak_pivot()) {
-    factor_current_ = false;
-    last_solution_valid_ = false;
-  }
 }
 
 void EquilibriumSolver::remember_solution(const Vector& free_displacement, double lambda) {
@@ -254,8 +246,12 @@ std::string EquilibriumSolver::ill_conditioned(const Vector& free_displacement, 
   }
   message << ": the stiffness is too ill-conditioned (part of the body nearly free, or "
              "hanging on a few bonds). Try: contact.enabled = true; less breaking (a smaller "
-             "heterogeneity.spread or gravity.g, a smaller stepping.increment); solver.tolerance = "
+             "heterogeneity.spread or gravity.g, a smaller stepping.increment); "
+             "solver.tolerance of at least "
           << residual;
+  if (std::any_of(model_.shear_stiffness.begin(), model_.shear_stiffness.end(),
+                  [](double ks) { return !(ks > 0); }))
+    message << "; material.poisson below 0.25 (at 0.25 the shear springs vanish)";
   return message.str();
 }
 
@@ -271,7 +267,6 @@ AffinePath EquilibriumSolver::checked_affine_path(double lambda) {
 
 Vector EquilibriumSolver::checked_solve(double lambda) {
   const std::int64_t n = model_.dofs().free_count;
-  discard_weak_updates();
   if (last_solution_valid_ && factor_current_ && lambda == last_lambda_ && n > 0) {
     Vector correction(n);
     if (factor_.solve_sparse(pending_forces_, correction.data())) {
@@ -333,7 +328,6 @@ void EquilibriumSolver::find_boundary_bonds() {
 AffinePath EquilibriumSolver::affine_path() {
   if (!model_.is_linear()) throw Error("affine_path: the bond law is not linear");
   const std::int64_t n = model_.dofs().free_count;
-  discard_weak_updates();
   if (!factor_current_) refactorize(Vector::Zero(n), 0.0);
   update_loads();
   Eigen::MatrixXd rhs(n, 2);

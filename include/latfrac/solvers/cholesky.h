@@ -48,10 +48,6 @@ class CholeskyFactor {
   // LDL' form that cholmod_l_updown needs. Throws Error if the result is not positive
   // definite.
   void update(const std::vector<Column>& columns, bool downdate);
-  // True when the updates since the last fresh factorization left a pivot below
-  // near_mechanism_pivot of K's diagonal (or a diagonal that cancelled to zero): a
-  // possible mechanism, for a fresh factorization to judge. O(n), once after updates.
-  bool updates_left_weak_pivot();
 
   // A mechanism shows as a pivot far below its own column's diagonal of K: L(k,k)^2 is the
   // stiffness of that unknown when the unknowns eliminated before it may move, K(p,p) its
@@ -98,11 +94,6 @@ class CholeskyFactor {
   struct State;
   std::int64_t smallest_pivot_column() const;
   WeakestPivot weakest_;
-  // K's diagonal in the factor's order: at the last fresh factorization, and kept up to
-  // date by the updates since.
-  void record_diagonal(StiffnessMatrix& matrix);
-  std::vector<double> diagonal_, fresh_diagonal_;
-  bool pivots_checked_ = true;
   std::unique_ptr<State> state_;
   std::vector<std::int64_t> inverse_permutation_;
   bool factorized_ = false;

@@ -120,7 +120,6 @@ class EquilibriumSolver {
   // Rank update of the factor with the columns sqrt(w) (e_j - e_i) (x) v on the free dofs.
   void update_factor(std::int64_t bond, const std::vector<RankOneTerm>& terms, bool downdate);
   long updates_since_factorization_ = 0;
-  void discard_weak_updates();
   // The last checked solution and its lambda, and the forces that the factor updates since
   // then took out of it or added to it, on the free dofs. At the same lambda the new
   // solution is that one plus K^-1 (those forces): a right-hand side with a few entries per
