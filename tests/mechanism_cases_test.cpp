@@ -93,8 +93,7 @@ HeldBalance held_balance(const Scene& scene, const KeptRun& run) {
     }
   }
   const Vector force = model.internal_force(state.displacement) - model.external_force;
-  const double load =
-      max_abs(model.residual(Vector::Zero(model.dofs().free_count), state.lambda));
+  const double load = max_abs(model.residual(Vector::Zero(model.dofs().free_count), state.lambda));
   HeldBalance result;
   double worst = 0;
   for (std::int64_t dof = 0; dof < model.dofs().dof_count(); ++dof) {
@@ -162,8 +161,7 @@ Scene graben_scene(int dim, double poisson, Criterion criterion) {
 
 }  // namespace
 
-TEST_CASE("Hard: at nu = 1/4 the mechanisms that breaking leaves are held, 2-D and 3-D",
-          "[hard]") {
+TEST_CASE("Hard: at nu = 1/4 the mechanisms that breaking leaves are held, 2-D and 3-D", "[hard]") {
   // Without shear springs a piece joined to the rest at one node turns about it: a pivot of
   // 1e-13 of its diagonal that the smallest-to-largest test let through, then "too
   // ill-conditioned" (issue 21).
@@ -201,9 +199,10 @@ TEST_CASE("Hard: massive breaking under strong gravity ends in equilibrium", "[h
   CHECK(run.result.summary.breaks > 0);
 }
 
-TEST_CASE("Hard: a random search over nu, heterogeneity, gravity and criteria meets no "
-          "ill-conditioned ending",
-          "[hard]") {
+TEST_CASE(
+    "Hard: a random search over nu, heterogeneity, gravity and criteria meets no "
+    "ill-conditioned ending",
+    "[hard]") {
   // nu in [0.2, 0.25] (a quarter of the scenes at 1/4 exactly), spread in [0.5, 0.99],
   // g in [0, 30], the four criteria, 2-D and 3-D, fixed steps and events, contact by
   // chance. Before the mechanism rule, the option mixes this searches over ended with
