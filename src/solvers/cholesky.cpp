@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <iomanip>
 #include <mutex>
 #include <sstream>
 
@@ -165,6 +166,7 @@ void CholeskyFactor::factorize(StiffnessMatrix& matrix) {
   cholmod_common& c = state_->common;
   cholmod_sparse a = view_of(matrix);
   factorized_ = false;
+  weakest_ = {};
   // A factor turned simplicial by updates starts again from the supernodal analysis.
   if (!state_->factor || !state_->factor->is_super) {
     cholmod_l_free_factor(&state_->factor, &c);
@@ -193,7 +195,97 @@ void CholeskyFactor::factorize(StiffnessMatrix& matrix) {
             << rcond << "): part of the body can move without resistance";
     throw SingularStiffness(message.str(), smallest_pivot_column());
   }
+  // The test above compares the smallest pivot with the largest, so a mechanism in a stiff
+  // body passes it: at nu = 1/4 (no shear springs) a piece that hangs on one node turns
+  // about it with a pivot of 1e-13 of its own diagonal and an rcond of 2e-14 to 1e-10.
+  weakest_ = find_weakest_pivot(matrix);
+  if (weakest_.position >= 0 && weakest_.ratio < near_mechanism_pivot) {
+    const NullMode mode = null_mode(matrix);
+    if (weakest_.ratio > mechanism_pivot && !mode.rounding()) {
+      factorized_ = true;  // a genuine soft motion
+      return;
+    }
+    std::ostringstream message;
+    message << std::scientific << std::setprecision(2) << "cholmod_l_factorize: a pivot is "
+            << weakest_.ratio << " of its diagonal (its motion's energy measured on K: "
+            << mode.energy << " of the factor's): part of the body is a mechanism, a "
+            << "zero-energy motion of " << mode.moving << " unknowns";
+    throw SingularStiffness(message.str(), mode.largest);
+  }
   factorized_ = true;
+}
+
+// One pass over the supernodal factor's diagonal: L(k,k)^2 / K(p,p) with p = Perm[k]. The
+// matrix holds its upper triangle with sorted rows, so a column's diagonal is its last entry.
+CholeskyFactor::WeakestPivot CholeskyFactor::find_weakest_pivot(StiffnessMatrix& matrix) const {
+  const cholmod_factor& f = *state_->factor;
+  WeakestPivot weakest;
+  if (!f.is_super) return weakest;
+  const auto* super = static_cast<const std::int64_t*>(f.super);
+  const auto* pi = static_cast<const std::int64_t*>(f.pi);
+  const auto* px = static_cast<const std::int64_t*>(f.px);
+  const auto* x = static_cast<const double*>(f.x);
+  const auto* perm = static_cast<const std::int64_t*>(f.Perm);
+  const std::vector<std::int64_t>& start = matrix.column_start();
+  const std::vector<std::int64_t>& row = matrix.row_index();
+  const std::vector<double>& value = matrix.values();
+  for (std::size_t s = 0; s < f.nsuper; ++s) {
+    const std::int64_t rows = pi[s + 1] - pi[s];
+    for (std::int64_t k = 0; k < super[s + 1] - super[s]; ++k) {
+      const double pivot = x[px[s] + k * rows + k];
+      const std::int64_t column = perm[super[s] + k];
+      const std::int64_t last = start[column + 1] - 1;
+      if (last < start[column] || row[last] != column || !(value[last] > 0)) continue;
+      const double ratio = pivot * pivot / value[last];
+      if (weakest.position < 0 || ratio < weakest.ratio) weakest = {super[s] + k, column, ratio};
+    }
+  }
+  return weakest;
+}
+
+// Holding the unknown the motion moves most stops it with the least force: for a piece
+// turning about a hinge that is a node far from the hinge, while the pivot's own column
+// may lie next to it. The energy x' K x is one pass over the matrix.
+CholeskyFactor::NullMode CholeskyFactor::null_mode(StiffnessMatrix& matrix) {
+  NullMode mode;
+  if (weakest_.position < 0 || !state_->factor || !state_->factor->is_super) return mode;
+  cholmod_common& c = state_->common;
+  const cholmod_factor& f = *state_->factor;
+  const std::int64_t n = static_cast<std::int64_t>(f.n);
+  std::vector<double> unit(n, 0.0);
+  unit[weakest_.position] = 1.0;
+  cholmod_dense b{};
+  b.nrow = b.d = b.nzmax = static_cast<std::size_t>(n);
+  b.ncol = 1;
+  b.x = unit.data();
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  const int ok = cholmod_l_solve2(CHOLMOD_Lt, state_->factor, &b, nullptr, &state_->solution,
+                                  nullptr, &state_->work_y, &state_->work_e, &c);
+  check(c, ok, "cholmod_l_solve2");
+  const double* y = static_cast<const double*>(state_->solution->x);
+  const auto* perm = static_cast<const std::int64_t*>(f.Perm);
+  std::vector<double> motion(n);
+  double largest = 0;
+  for (std::int64_t k = 0; k < n; ++k) {
+    motion[perm[k]] = y[k];
+    if (std::abs(y[k]) > largest) {
+      largest = std::abs(y[k]);
+      mode.largest = perm[k];
+    }
+  }
+  for (std::int64_t k = 0; k < n; ++k) mode.moving += std::abs(y[k]) > 1e-3 * largest;
+  const std::vector<std::int64_t>& start = matrix.column_start();
+  const std::vector<std::int64_t>& row = matrix.row_index();
+  const std::vector<double>& value = matrix.values();
+  mode.energy = 0;
+  for (std::int64_t j = 0; j < n; ++j) {
+    for (std::int64_t k = start[j]; k < start[j + 1]; ++k) {
+      const std::int64_t i = row[k];
+      mode.energy += (i == j ? 1.0 : 2.0) * value[k] * motion[i] * motion[j];
+    }
+  }
+  return mode;
 }
 
 void CholeskyFactor::solve(double* rhs, std::int64_t rows, int columns) {

@@ -6,6 +6,8 @@
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 
+#include <iomanip>
+#include <sstream>
 #include <string>
 
 #include "latfrac/solvers/equilibrium.h"
@@ -187,9 +189,11 @@ EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacem
   report.relative_residual =
       max_abs(evaluated ? k.last_residual : model_.residual(free_displacement, lambda)) / load;
   if (report.relative_residual > options_.tolerance) {
-    throw Error("KINSol stopped (" + flag_name(flag) + ") with the residual at " +
-                std::to_string(report.relative_residual) + " of the load, above the tolerance " +
-                std::to_string(options_.tolerance));
+    std::ostringstream message;
+    message << std::scientific << std::setprecision(2) << "KINSol stopped (" << flag_name(flag)
+            << ") at lambda " << lambda << " with the residual at " << report.relative_residual
+            << " of the load, above the tolerance " << options_.tolerance;
+    throw Error(message.str());
   }
   return report;
 }

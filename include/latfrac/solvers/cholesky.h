@@ -6,6 +6,7 @@
 // Error naming the call.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <utility>
@@ -32,7 +33,9 @@ class CholeskyFactor {
   std::vector<std::int64_t> elimination_order() const;
   // Numeric factorization (analyzes first if needed). Throws SingularStiffness, naming the
   // column where it showed, when the matrix is not positive definite or singular to
-  // working precision: a rigid-body motion or a part of the body without support.
+  // working precision: a rigid-body motion or a part of the body without support; or when
+  // a pivot is at most mechanism_pivot of its diagonal, naming the unknown the mechanism
+  // moves most.
   void factorize(StiffnessMatrix& matrix);
   // Solves K X = B for `columns` right-hand sides stored column after column, in place.
   void solve(double* rhs, std::int64_t rows, int columns);
@@ -51,6 +54,43 @@ class CholeskyFactor {
   // definite.
   void update(const std::vector<Column>& columns, bool downdate);
 
+  // A mechanism shows as a pivot far below its own column's diagonal of K: L(k,k)^2 is the
+  // stiffness of that unknown when the unknowns eliminated before it may move, K(p,p) its
+  // stiffness when every other unknown is held. The weakest pivot of the last fresh
+  // factorization: its position in the factor's order, its column in the matrix's, and
+  // L(k,k)^2 / K(p,p), in [0, 1]. position -1: none measured (no fresh factorization).
+  struct WeakestPivot {
+    std::int64_t position = -1;
+    std::int64_t column = -1;
+    double ratio = 1;
+  };
+  const WeakestPivot& weakest_pivot() const { return weakest_; }
+  // The scan that factorize() makes (O(n)), for benchmarks; needs the fresh supernodal
+  // factor of `matrix`.
+  WeakestPivot find_weakest_pivot(StiffnessMatrix& matrix) const;
+  // At or below mechanism_pivot, factorize() reports a mechanism (SingularStiffness).
+  // Below near_mechanism_pivot it reports one when the pivot is rounding: the energy of its
+  // motion measured on K disagrees with the factor's. EquilibriumSolver also blames a solve
+  // that misses its tolerance on a pivot below near_mechanism_pivot. docs/robustness.md
+  // gives the measurements behind both bounds.
+  static constexpr double mechanism_pivot = 1e-10;
+  static constexpr double near_mechanism_pivot = 1e-6;
+  // The motion at the weakest pivot, x = P' L'^-1 e_k: the factor gives it the energy
+  // x' K x = e_k' e_k = 1 and K x = P' L e_k, small against x. The unknown it moves most
+  // (matrix numbering), how many unknowns move by more than 1e-3 of that, and x' K x
+  // measured on the matrix itself. A genuine soft motion has energy 1 to rounding
+  // (|1 - energy| ~ eps / ratio, at most 2e-6 in the band); the motion of a rounding pivot
+  // has none of its own, and the product shows the factor's error: 0.16 to 3 away from 1
+  // where measured. One triangular solve and one pass over K; needs the fresh supernodal
+  // factor.
+  struct NullMode {
+    std::int64_t largest = -1;
+    std::int64_t moving = 0;
+    double energy = 1;
+    bool rounding() const { return !(std::abs(energy - 1) <= 1e-2); }
+  };
+  NullMode null_mode(StiffnessMatrix& matrix);
+
   bool analyzed() const;
   bool factorized() const { return factorized_; }
   std::int64_t factor_nonzeros() const;
@@ -58,6 +98,7 @@ class CholeskyFactor {
  private:
   struct State;
   std::int64_t smallest_pivot_column() const;
+  WeakestPivot weakest_;
   std::unique_ptr<State> state_;
   std::vector<std::int64_t> inverse_permutation_;
   bool factorized_ = false;

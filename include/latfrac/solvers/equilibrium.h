@@ -12,6 +12,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "latfrac/solvers/cholesky.h"
 #include "latfrac/mechanics/model.h"
@@ -113,6 +114,14 @@ class EquilibriumSolver {
   bool loads_current_ = false;
   // The relative residual of a free displacement at lambda, max |R| / max |R(0, lambda)|.
   double relative_residual(const Vector& free_displacement, double lambda);
+  // After a fresh factorization's solve missed the tolerance: throws SingularStiffness at a
+  // near-mechanism, returns when the residual is at the rounding floor, throws Error else.
+  void fresh_solve_missed(const Vector& free_displacement, double lambda, double residual);
+  bool at_rounding_floor(const Vector& free_displacement, double lambda);
+  static constexpr double max_rounding_excess = 100;
+  std::string ill_conditioned(const Vector& free_displacement, double lambda,
+                              double residual) const;
+  std::string describe_unknown(std::int64_t unknown) const;
   // Rank update of the factor with the columns sqrt(w) (e_j - e_i) (x) v on the free dofs.
   void update_factor(std::int64_t bond, const std::vector<RankOneTerm>& terms, bool downdate);
   long updates_since_factorization_ = 0;
