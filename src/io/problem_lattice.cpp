@@ -37,7 +37,9 @@ LatticeSpec read_lattice(const Section& top) {
     }
   }
 
-  if (s.has("next_nearest") && (flat || random)) {
+  // next_nearest = false is what these lattices have anyway: allowed, so that a 3-D HCP
+  // problem can be run on a random lattice with --set lattice.next_nearest=false.
+  if (s.has("next_nearest") && (flat || (random && s.boolean("next_nearest").value_or(false)))) {
     s.fail("next_nearest",
            flat ? "only applies in 3-D (the 2-D lattice has nearest-neighbour bonds only)"
                 : "only applies to the \"hcp\" lattice (a random lattice's bonds are its "
