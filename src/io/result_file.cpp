@@ -7,6 +7,10 @@
 #include <numeric>
 #include <system_error>
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include "checkpoint_group.h"
 #include "latfrac/base/atomic_write.h"
 #include "hdf5_arrays.h"
 #include "hdf5_handles.h"
@@ -170,9 +174,11 @@ void write_summary(hid_t file, const RunSummary& summary) {
   hdf5::write_attribute(file, group, "relaxation_unconverged", summary.relaxation_unconverged);
   hdf5::write_attribute(file, group, "final_lambda", summary.final_lambda);
   hdf5::write_attribute(file, group, "wall_seconds", summary.wall_seconds);
+  hdf5::write_attribute(file, group, "complete", static_cast<std::uint8_t>(summary.complete));
 }
 
-void write_hdf5(const std::string& file_name, const RunResult& result) {
+void write_hdf5(const std::string& file_name, const RunResult& result,
+                const RunCheckpoint* checkpoint) {
   const std::string quoted = "'" + file_name + "'";
   hdf5::Handle access = hdf5::checked(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate", quoted);
   // SEMI: closing fails if an object is still open, instead of silently deferring the close.
@@ -187,7 +193,17 @@ void write_hdf5(const std::string& file_name, const RunResult& result) {
   write_fragments(file.get(), result.fragments);
   write_snapshots(file.get(), result);
   write_summary(file.get(), result.summary);
+  if (checkpoint) write_checkpoint_group(file.get(), *checkpoint);
   file.close("H5Fclose", quoted);
+}
+
+// On the disk before the rename, so that a power cut leaves the old file or the new one.
+void sync_to_disk(const std::string& file_name) {
+  const int descriptor = ::open(file_name.c_str(), O_RDONLY);
+  if (descriptor < 0) throw Error("cannot open '" + file_name + "' to sync it");
+  const int status = ::fsync(descriptor);
+  ::close(descriptor);
+  if (status != 0) throw Error("cannot sync '" + file_name + "' to disk");
 }
 
 // Rows of a 1-D dataset (columns == 0) or of a rows x columns dataset.
@@ -279,6 +295,9 @@ RunSummary read_summary(hid_t file) {
   summary.relaxation_unconverged = optional_count("relaxation_unconverged");
   summary.final_lambda = hdf5::read_attribute<double>(file, group, "final_lambda");
   summary.wall_seconds = hdf5::read_attribute<double>(file, group, "wall_seconds");
+  // Files written before runs were written as they went are complete.
+  summary.complete = H5Aexists_by_name(file, group.c_str(), "complete", H5P_DEFAULT) <= 0 ||
+                     hdf5::read_attribute<std::uint8_t>(file, group, "complete") != 0;
   return summary;
 }
 
@@ -311,18 +330,27 @@ RunResult read_contents(hid_t file) {
 
 }  // namespace
 
-void write_result_file(const std::string& path, const RunResult& result) {
+void write_result_file(const std::string& path, const RunResult& result,
+                       const RunCheckpoint* checkpoint) {
   check_sizes(result);
   check_finite(result);
   hdf5::QuietErrors quiet;
   try {
-    write_atomically(path, [&](const std::string& partial) { write_hdf5(partial, result); });
+    write_atomically(path, [&](const std::string& partial) {
+      write_hdf5(partial, result, checkpoint);
+      if (checkpoint) sync_to_disk(partial);
+    });
   } catch (const Error& error) {
     throw Error("cannot write result file '" + path + "': " + error.what());
   }
 }
 
-RunResult read_result_file(const std::string& path) {
+namespace {
+
+// Opens a latfrac result file for reading and calls read(file); InputError for a missing,
+// non-HDF5 or non-latfrac file, or for a missing or misshapen object.
+template <class Read>
+auto read_from(const std::string& path, Read read) {
   hdf5::QuietErrors quiet;
   const std::string quoted = "'" + path + "'";
   std::error_code ignored;
@@ -340,13 +368,26 @@ RunResult read_result_file(const std::string& path) {
                        "it has no /provenance group");
     }
     try {
-      return read_contents(file.get());
+      return read(file.get());
     } catch (const InputError& error) {
       throw InputError("result file " + quoted + " is incomplete or damaged: " + error.what());
     }
   } catch (const Error& error) {
     throw Error("cannot read result file " + quoted + ": " + error.what());
   }
+}
+
+}  // namespace
+
+RunResult read_result_file(const std::string& path) { return read_from(path, read_contents); }
+
+RunCheckpoint read_checkpoint(const std::string& path) {
+  const bool complete = read_from(path, [](hid_t file) { return read_summary(file).complete; });
+  if (complete) {
+    throw InputError("'" + path + "' is the result of a run that finished: there is nothing " +
+                     "to resume");
+  }
+  return read_from(path, read_checkpoint_group);
 }
 
 }  // namespace latfrac
