@@ -105,7 +105,9 @@ Scene resumed_scene(const RunRequest& request, ResumePoint& point) {
 }
 
 int run_command(const RunRequest& request) {
-  // 1. Read and validate the scene (or the run to continue); refuse what cannot fit.
+  // 1. Read and validate the scene (or the run to continue); refuse what cannot fit. A
+  //    SIGINT or SIGTERM from here on stops the run at its first chance.
+  install_stop_handlers();
   if (request.problem.empty() && request.resume.empty())
     throw InputError("run: a problem file is required (or --resume RESULT.h5)");
   if (!request.resume.empty() && !request.out_dir.empty())
@@ -128,14 +130,10 @@ int run_command(const RunRequest& request) {
   } else {
     const std::string out_dir =
         request.out_dir.empty() ? (fs::path("out") / scene.name).string() : request.out_dir;
-    std::error_code error;
-    fs::create_directories(out_dir, error);
-    if (error) throw Error("cannot create output directory '" + out_dir + "': " + error.message());
     h5 = (fs::path(out_dir) / scene.name).string() + ".h5";
   }
   const std::string base = (fs::path(h5).parent_path() / fs::path(h5).stem()).string();
   const std::string xmf = base + ".xmf";
-  install_stop_handlers();
   ResultWriter writer(h5, xmf, request.checkpoint_minutes,
                       resuming ? point.checkpoint.problem_path : scene.source_path,
                       resuming ? (request.sets.empty() ? point.checkpoint.overrides : request.sets)

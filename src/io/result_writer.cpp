@@ -43,19 +43,28 @@ ResultWriter::ResultWriter(std::string h5_path, std::string xmf_path, double che
       overrides_(std::move(overrides)),
       wall_before_(wall_seconds_before),
       started_(std::chrono::steady_clock::now()),
-      last_write_(started_) {
-  lock_descriptor_ = ::open(lock_path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (lock_descriptor_ < 0) {
+      last_write_(started_) {}
+
+// The output directory and the lock, at the first write: a run refused before it writes
+// leaves nothing behind.
+void ResultWriter::open() {
+  const std::filesystem::path directory = std::filesystem::path(h5_path_).parent_path();
+  std::error_code error;
+  if (!directory.empty()) std::filesystem::create_directories(directory, error);
+  if (error)
+    throw Error("cannot create output directory '" + directory.string() + "': " + error.message());
+  const int descriptor = ::open(lock_path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (descriptor < 0) {
     throw Error("cannot write results to '" + h5_path_ + "': cannot create '" + lock_path_ +
                 "': " + std::strerror(errno));
   }
-  if (::flock(lock_descriptor_, LOCK_EX | LOCK_NB) != 0) {
-    const std::string holder = holder_of(lock_descriptor_);
-    ::close(lock_descriptor_);
-    lock_descriptor_ = -1;
+  if (::flock(descriptor, LOCK_EX | LOCK_NB) != 0) {
+    const std::string holder = holder_of(descriptor);
+    ::close(descriptor);
     throw Error("'" + h5_path_ + "' is being written by another latfrac run" + holder +
                 "; wait for it to end, or write elsewhere (-o)");
   }
+  lock_descriptor_ = descriptor;
   const std::string pid = std::to_string(::getpid());
   if (::ftruncate(lock_descriptor_, 0) == 0 &&
       ::pwrite(lock_descriptor_, pid.data(), pid.size(), 0) < 0) {
@@ -78,15 +87,16 @@ bool ResultWriter::checkpoint_due() {
 }
 
 void ResultWriter::write(const RunResult& result, const RunCheckpoint* checkpoint) {
+  if (lock_descriptor_ < 0) open();
   const auto begin = std::chrono::steady_clock::now();
   try {
     write_result_file(h5_path_, result, checkpoint);
     write_xdmf(xmf_path_, std::filesystem::path(h5_path_).filename().string(), result);
   } catch (const Error& error) {
     throw Error(std::string(error.what()) +
-                (checkpoint && checkpoint->started
-                     ? "; the last checkpoint written, if any, is intact in '" + h5_path_ + "'"
-                     : ""));
+                (writes_ > 0 ? "; the last checkpoint written is intact in '" + h5_path_ +
+                                   "' (latfrac run --resume " + h5_path_ + ")"
+                             : ""));
   }
   last_write_ = std::chrono::steady_clock::now();
   last_write_seconds_ = seconds_between(begin, last_write_);

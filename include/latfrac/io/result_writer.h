@@ -17,7 +17,8 @@ namespace latfrac {
 
 class ResultWriter final : public RunControl {
  public:
-  // Locks the result file (Error naming it when another run holds it). A checkpoint is
+  // At its first write, creates the output directory and locks the result file (Error
+  // naming it when another run holds it). A checkpoint is
   // due every `checkpoint_minutes` (0: only when stopping), and never sooner than 20
   // times the last write took, which keeps writing under 5 % of the run's time.
   ResultWriter(std::string h5_path, std::string xmf_path, double checkpoint_minutes,
@@ -37,6 +38,7 @@ class ResultWriter final : public RunControl {
   double write_seconds() const { return write_seconds_; }
 
  private:
+  void open();
   void write(const RunResult& result, const RunCheckpoint* checkpoint);
 
   std::string h5_path_, xmf_path_, lock_path_;
