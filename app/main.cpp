@@ -10,21 +10,21 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <sstream>
 #include <limits>
 #include <optional>
+#include <sstream>
 
+#include "latfrac/analysis/fault_analysis.h"
 #include "latfrac/base/error.h"
 #include "latfrac/base/stop_signal.h"
-#include "latfrac/analysis/fault_analysis.h"
 #include "latfrac/io/problem_file.h"
-#include "latfrac/render/render.h"
 #include "latfrac/io/result_file.h"
 #include "latfrac/io/result_writer.h"
+#include "latfrac/io/xdmf.h"
+#include "latfrac/render/render.h"
 #include "latfrac/scene/run.h"
 #include "latfrac/scene/size_estimate.h"
 #include "latfrac/study/study.h"
-#include "latfrac/io/xdmf.h"
 
 namespace fs = std::filesystem;
 using namespace latfrac;
@@ -86,14 +86,16 @@ Scene resumed_scene(const RunRequest& request, ResumePoint& point) {
     if (text != recorded.problem) {
       throw InputError("cannot resume '" + request.resume + "': the problem file '" + path +
                        "' differs from the problem the run started with (recorded in the result "
-                       "file's /provenance problem)" + advice);
+                       "file's /provenance problem)" +
+                       advice);
     }
     if (sets != checkpoint.overrides) {
       std::string list;
       for (const std::string& set : checkpoint.overrides) list += " --set " + set;
-      throw InputError("cannot resume '" + request.resume + "': the --set overrides differ from "
-                       "those the run started with (" + (list.empty() ? " none" : list) + ")" +
-                       advice);
+      throw InputError("cannot resume '" + request.resume +
+                       "': the --set overrides differ from "
+                       "those the run started with (" +
+                       (list.empty() ? " none" : list) + ")" + advice);
     }
     if (recorded.version != LATFRAC_VERSION || recorded.git_commit != LATFRAC_GIT_COMMIT) {
       throw InputError("cannot resume '" + request.resume + "': it was written by latfrac " +
@@ -117,8 +119,8 @@ int run_command(const RunRequest& request) {
                      " is negative; allowed: minutes >= 0 (0: only when stopping)");
   ResumePoint point;
   const bool resuming = !request.resume.empty();
-  const Scene scene = resuming ? resumed_scene(request, point)
-                               : read_problem_file(request.problem, request.sets);
+  const Scene scene =
+      resuming ? resumed_scene(request, point) : read_problem_file(request.problem, request.sets);
   check_memory(scene, request.force);
   if (!request.quiet) std::cout << describe(scene) << "\n";
 
@@ -134,11 +136,11 @@ int run_command(const RunRequest& request) {
   }
   const std::string base = (fs::path(h5).parent_path() / fs::path(h5).stem()).string();
   const std::string xmf = base + ".xmf";
-  ResultWriter writer(h5, xmf, request.checkpoint_minutes,
-                      resuming ? point.checkpoint.problem_path : scene.source_path,
-                      resuming ? (request.sets.empty() ? point.checkpoint.overrides : request.sets)
-                               : request.sets,
-                      resuming && point.checkpoint.started ? point.result.summary.wall_seconds : 0);
+  ResultWriter writer(
+      h5, xmf, request.checkpoint_minutes,
+      resuming ? point.checkpoint.problem_path : scene.source_path,
+      resuming ? (request.sets.empty() ? point.checkpoint.overrides : request.sets) : request.sets,
+      resuming && point.checkpoint.started ? point.result.summary.wall_seconds : 0);
 
   // 3. Run it.
   RunOptions options;

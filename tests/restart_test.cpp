@@ -110,15 +110,15 @@ void check_resumes(const Scene& scene) {
 
 TEST_CASE("a resumed 2-D fixed-step run gives the uninterrupted events", "[restart]") {
   check_resumes(shipped("fig6-elliptic-graben-2d.toml", {"lattice.spacing=2000"}));
-  check_resumes(shipped("fig6-elliptic-graben-2d.toml",
-                        {"lattice.spacing=2000", "contact.enabled=true"}));
+  check_resumes(
+      shipped("fig6-elliptic-graben-2d.toml", {"lattice.spacing=2000", "contact.enabled=true"}));
 }
 
 TEST_CASE("a resumed 2-D event-driven run gives the uninterrupted events", "[restart]") {
   check_resumes(shipped("fig4a-tensile-2d.toml",
                         {"lattice.spacing=2000", "stepping.method=event", "contact.enabled=true"}));
-  check_resumes(shipped("fig6-elliptic-graben-2d.toml",
-                        {"lattice.spacing=2000", "stepping.method=event"}));
+  check_resumes(
+      shipped("fig6-elliptic-graben-2d.toml", {"lattice.spacing=2000", "stepping.method=event"}));
 }
 
 TEST_CASE("a resumed 3-D run gives the uninterrupted events", "[restart]") {

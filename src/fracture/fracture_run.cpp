@@ -156,9 +156,8 @@ void FractureRun::fixed_steps() {
 void FractureRun::event_driven() {
   BreakSource breaks(equilibrium_, evaluator_, breaking_);
   PairSwitchSource switches(equilibrium_, settling_, breaking_);
-  breaking_.between_groups([&](double lambda, std::int64_t cascade) {
-    between_events(lambda, 0, &switches, cascade);
-  });
+  breaking_.between_groups(
+      [&](double lambda, std::int64_t cascade) { between_events(lambda, 0, &switches, cascade); });
   double from = 0;
   if (resumed_) {
     from = resumed_->lambda;
@@ -172,7 +171,9 @@ void FractureRun::event_driven() {
   }
   follow_events(
       equilibrium_, {&breaks, &switches}, from, schedule_.total,
-      [&](double next) { snapshots_.take_until(next, false, [&](double at) { take_snapshot(at); }); },
+      [&](double next) {
+        snapshots_.take_until(next, false, [&](double at) { take_snapshot(at); });
+      },
       [&](double lambda) {
         progress_.update(lambda, breaking_.breaks());
         if (lambda != schedule_.total) between_events(lambda, 0, &switches);

@@ -101,7 +101,8 @@ RunCheckpoint read_checkpoint_group(hid_t file) {
   c.next_cascade = hdf5::read_attribute<std::int64_t>(file, group, "next_cascade");
   c.fragments_at_start = hdf5::read_attribute<std::int64_t>(file, group, "fragments_at_start");
   c.switches.lambda = hdf5::read_attribute<double>(file, group, "switch_lambda");
-  c.switches.switch_at_start = hdf5::read_attribute<std::uint8_t>(file, group, "switch_at_start") != 0;
+  c.switches.switch_at_start =
+      hdf5::read_attribute<std::uint8_t>(file, group, "switch_at_start") != 0;
   c.problem_path = hdf5::read_string_attribute(file, group, "problem_path");
   c.overrides = split_lines(hdf5::read_string_attribute(file, group, "overrides"));
   const hsize_t bonds = length_of(file, group + "/pair_state");
@@ -119,18 +120,21 @@ RunCheckpoint read_checkpoint_group(hid_t file) {
   factor.factored_states = hdf5::read_dataset<std::uint8_t>(
       file, group + "/factored_states", {length_of(file, group + "/factored_states")});
   const hsize_t changes = length_of(file, group + "/change_bond");
-  const auto change_bond = hdf5::read_dataset<std::int64_t>(file, group + "/change_bond", {changes});
+  const auto change_bond =
+      hdf5::read_dataset<std::int64_t>(file, group + "/change_bond", {changes});
   const auto change_state =
       hdf5::read_dataset<std::uint8_t>(file, group + "/change_state", {changes});
   for (hsize_t i = 0; i < changes; ++i) factor.changes.push_back({change_bond[i], change_state[i]});
-  const auto solution = hdf5::read_dataset<double>(file, group + "/solution",
-                                                   {length_of(file, group + "/solution")});
-  factor.solution = Eigen::Map<const Vector>(solution.data(), static_cast<Eigen::Index>(solution.size()));
+  const auto solution =
+      hdf5::read_dataset<double>(file, group + "/solution", {length_of(file, group + "/solution")});
+  factor.solution =
+      Eigen::Map<const Vector>(solution.data(), static_cast<Eigen::Index>(solution.size()));
   const hsize_t pending = length_of(file, group + "/pending_index");
   const auto pending_index =
       hdf5::read_dataset<std::int64_t>(file, group + "/pending_index", {pending});
   const auto pending_value = hdf5::read_dataset<double>(file, group + "/pending_value", {pending});
-  for (hsize_t i = 0; i < pending; ++i) factor.pending_forces.push_back({pending_index[i], pending_value[i]});
+  for (hsize_t i = 0; i < pending; ++i)
+    factor.pending_forces.push_back({pending_index[i], pending_value[i]});
 
   const hdf5::Shape sets_shape = hdf5::dataset_shape(file, group + "/switch_sets");
   if (sets_shape.size() != 2 || sets_shape[1] != bonds)

@@ -1,22 +1,21 @@
 // Writing a RunResult to an HDF5 result file and reading it back (layout: docs/result-files.md).
 #include "latfrac/io/result_file.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <numeric>
 #include <system_error>
 
-#include <fcntl.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
-
 #include "checkpoint_group.h"
-#include "latfrac/base/atomic_write.h"
 #include "hdf5_arrays.h"
 #include "hdf5_handles.h"
+#include "latfrac/base/atomic_write.h"
 #include "latfrac/base/error.h"
 
 namespace latfrac {
@@ -221,11 +220,9 @@ void write_hdf5(const std::string& file_name, const RunResult& result,
   const std::string quoted = "'" + file_name + "'";
   std::vector<char> image;
   {
-    hdf5::Handle access =
-        hdf5::checked(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate", quoted);
+    hdf5::Handle access = hdf5::checked(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate", quoted);
     // SEMI: closing fails if an object is still open, instead of silently deferring it.
-    hdf5::check(H5Pset_fclose_degree(access.get(), H5F_CLOSE_SEMI), "H5Pset_fclose_degree",
-                quoted);
+    hdf5::check(H5Pset_fclose_degree(access.get(), H5F_CLOSE_SEMI), "H5Pset_fclose_degree", quoted);
     hdf5::check(H5Pset_fapl_core(access.get(), estimated_bytes(result), 0), "H5Pset_fapl_core",
                 quoted);
     hdf5::Handle file =
@@ -380,7 +377,8 @@ void write_result_file(const std::string& path, const RunResult& result,
   check_finite(result);
   hdf5::QuietErrors quiet;
   try {
-    write_atomically(path, [&](const std::string& partial) { write_hdf5(partial, result, checkpoint); });
+    write_atomically(path,
+                     [&](const std::string& partial) { write_hdf5(partial, result, checkpoint); });
   } catch (const Error& error) {
     throw Error("cannot write result file '" + path + "': " + error.what());
   }

@@ -26,8 +26,7 @@ double seconds_between(std::chrono::steady_clock::time_point from,
 std::string holder_of(int descriptor) {
   char text[32] = {};
   const ssize_t length = ::pread(descriptor, text, sizeof text - 1, 0);
-  return length > 0 ? " (process " + std::string(text, static_cast<std::size_t>(length)) + ")"
-                    : "";
+  return length > 0 ? " (process " + std::string(text, static_cast<std::size_t>(length)) + ")" : "";
 }
 
 }  // namespace

@@ -72,7 +72,8 @@ void restore_model(Model& model, const RunCheckpoint& checkpoint, const std::str
   // The pair states of the last factorization: the solver replays the changes since.
   const EquilibriumSolver::History& factor = checkpoint.factor;
   if (factor.factor_current && factor.factored_states.size() != bonds)
-    throw InputError(source + ": the checkpoint's factor history does not fit this problem's model");
+    throw InputError(source +
+                     ": the checkpoint's factor history does not fit this problem's model");
   const std::vector<std::uint8_t>& states =
       factor.factor_current ? factor.factored_states : checkpoint.pair_states;
   ModelEditor editor(model);
@@ -152,7 +153,8 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   EquilibriumSolver solver(model, scene.solver);
   if (resume) {
     std::vector<PairState> states;
-    for (std::uint8_t state : resume->checkpoint.pair_states) states.push_back(static_cast<PairState>(state));
+    for (std::uint8_t state : resume->checkpoint.pair_states)
+      states.push_back(static_cast<PairState>(state));
     solver.rebuild(resume->checkpoint.factor, states);
   }
   ProgressLine progress(options.progress);
@@ -167,7 +169,8 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     } catch (const RunStopped&) {
       progress.finish();
       result.summary.wall_seconds =
-          wall_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          wall_before +
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       return result;  // as saved: summary.complete is false
     }
     static_cast<RunCounters&>(result.summary) = fracture.counters();
@@ -193,6 +196,7 @@ std::string summary_text(const RunResult& result) {
        << result.scene.spacing << " m, "
        << (result.scene.criterion.empty() ? "elastic" : result.scene.criterion) << ")\n"
        << "  nodes " << result.node_count() << ", bonds " << result.bond_count() << "\n"
+       << (s.complete ? "" : "  incomplete: written during the run, or the run stopped (latfrac run --resume continues it)\n")
        << "  final lambda " << s.final_lambda << ", bonds broken " << s.breaks << ", events "
        << result.events.size() << "\n"
        << "  parts held for lack of support " << result.fragments.size()

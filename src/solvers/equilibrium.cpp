@@ -62,7 +62,8 @@ EquilibriumSolver::History EquilibriumSolver::history() const {
 void EquilibriumSolver::rebuild(const History& history, const std::vector<PairState>& states) {
   if (history.factor_current) {
     refactorize(Vector::Zero(model_.dofs().free_count), 0.0);
-    for (const auto& [bond, state] : history.changes) set_pair_state(bond, static_cast<PairState>(state));
+    for (const auto& [bond, state] : history.changes)
+      set_pair_state(bond, static_cast<PairState>(state));
   }
   for (std::size_t b = 0; b < states.size(); ++b) {
     if (model_.state(static_cast<std::int64_t>(b)) == states[b]) continue;
@@ -159,7 +160,8 @@ void EquilibriumSolver::append_on_bond(std::int64_t bond, const Vec3& v,
 // contact spring).
 void EquilibriumSolver::set_pair_state(std::int64_t bond, PairState state) {
   if (model_.state(bond) == state) return;
-  if (factor_current_) changes_since_factorization_.push_back({bond, static_cast<std::uint8_t>(state)});
+  if (factor_current_)
+    changes_since_factorization_.push_back({bond, static_cast<std::uint8_t>(state)});
   const PairSprings springs = model_.springs(bond);
   const InteractionLaw* old_law = model_.law_of(bond);
   const std::vector<RankOneTerm> removed =

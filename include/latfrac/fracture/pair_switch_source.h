@@ -10,8 +10,8 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "latfrac/fracture/breaking.h"

@@ -35,8 +35,8 @@ struct SwitchGuard {
 struct RunCheckpoint {
   // False: written before the run began (a resume starts from lambda = 0).
   bool started = false;
-  double lambda = 0;            // every event up to and at lambda has been taken
-  std::int64_t next_step = 0;   // fixed steps: the index k of the next step
+  double lambda = 0;           // every event up to and at lambda has been taken
+  std::int64_t next_step = 0;  // fixed steps: the index k of the next step
   // Stopped inside this cascade (its id) at lambda, after a group of breaks: the resume
   // finishes it first (fixed steps: it belongs to step next_step). -1: between events.
   std::int64_t cascade = -1;

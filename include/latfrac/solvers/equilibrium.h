@@ -16,10 +16,10 @@
 #include <utility>
 #include <vector>
 
-#include "latfrac/solvers/cholesky.h"
 #include "latfrac/mechanics/model.h"
-#include "latfrac/solvers/solver_options.h"
 #include "latfrac/mechanics/stiffness.h"
+#include "latfrac/solvers/cholesky.h"
+#include "latfrac/solvers/solver_options.h"
 
 namespace latfrac {
 
