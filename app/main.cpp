@@ -97,10 +97,10 @@ Scene resumed_scene(const RunRequest& request, ResumePoint& point) {
                        "those the run started with (" +
                        (list.empty() ? " none" : list) + ")" + advice);
     }
-    if (recorded.version != LATFRAC_VERSION || recorded.git_commit != LATFRAC_GIT_COMMIT) {
+    if (recorded.version != code_version() || recorded.git_commit != code_commit()) {
       throw InputError("cannot resume '" + request.resume + "': it was written by latfrac " +
                        recorded.version + " (commit " + recorded.git_commit + "), this is " +
-                       LATFRAC_VERSION + " (commit " + LATFRAC_GIT_COMMIT + ")" + advice);
+                       code_version() + " (commit " + code_commit() + ")" + advice);
     }
   }
   return parse_problem(text, path.empty() ? request.resume : path, sets);

@@ -25,12 +25,15 @@ std::string utc_timestamp() {
   return text;
 }
 
+std::string code_version() { return LATFRAC_VERSION; }
+std::string code_commit() { return LATFRAC_GIT_COMMIT; }
+
 namespace {
 
 Provenance provenance_of(const Scene& scene, const RunOptions& options) {
   Provenance p;
-  p.version = LATFRAC_VERSION;
-  p.git_commit = LATFRAC_GIT_COMMIT;
+  p.version = code_version();
+  p.git_commit = code_commit();
   p.command_line = options.command_line;
   p.problem = scene.source_text;
   p.created = utc_timestamp();

@@ -45,7 +45,10 @@ void EquilibriumSolver::refactorize(const Vector& free_displacement, double lamb
 
 EquilibriumSolver::History EquilibriumSolver::history() const {
   History h;
-  h.factor_current = factor_current_ && model_.dofs().free_count > 0;
+  // Only a factor of the linear stiffness (refactorize) has a history to replay; a
+  // resume otherwise starts from a fresh factorization.
+  h.factor_current = factor_current_ && model_.dofs().free_count > 0 &&
+                     factored_states_.size() == model_.pair_states().size();
   if (h.factor_current) {
     h.factored_states = factored_states_;
     h.changes = changes_since_factorization_;

@@ -41,6 +41,11 @@ RunResult run_scene(const Scene& scene, const RunOptions& options);
 // The current time in ISO 8601 (UTC), as provenance records it.
 std::string utc_timestamp();
 
+// This build's version and commit, as provenance records them (one definition, so that
+// a resume compares with exactly what a run writes).
+std::string code_version();
+std::string code_commit();
+
 // The summary printed at the end of a run and by `latfrac analyze`.
 std::string summary_text(const RunResult& result);
 
