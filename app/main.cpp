@@ -1,24 +1,30 @@
 // latfrac: the command line. run, check, study, analyze, render (docs/cli.md).
 //
-// Exit status: 0 success, 2 bad input (problem file or option), 1 anything else.
+// Exit status: 0 success, 2 bad input (problem file or option), 3 a run stopped by SIGINT
+// or SIGTERM (its results so far and a checkpoint written, docs/restart.md), 1 anything
+// else.
 #include <latfrac_version.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <limits>
 #include <optional>
+#include <sstream>
 
-#include "latfrac/base/error.h"
 #include "latfrac/analysis/fault_analysis.h"
+#include "latfrac/base/error.h"
+#include "latfrac/base/stop_signal.h"
 #include "latfrac/io/problem_file.h"
-#include "latfrac/render/render.h"
 #include "latfrac/io/result_file.h"
+#include "latfrac/io/result_writer.h"
+#include "latfrac/io/xdmf.h"
+#include "latfrac/render/render.h"
 #include "latfrac/scene/run.h"
 #include "latfrac/scene/size_estimate.h"
 #include "latfrac/study/study.h"
-#include "latfrac/io/xdmf.h"
 
 namespace fs = std::filesystem;
 using namespace latfrac;
@@ -27,7 +33,10 @@ namespace {
 
 std::string joined(int argc, char** argv) {
   std::string line;
-  for (int i = 0; i < argc; ++i) line += (i ? " " : "") + std::string(argv[i]);
+  for (int i = 0; i < argc; ++i) {
+    if (i) line += ' ';
+    line += argv[i];
+  }
   return line;
 }
 
@@ -38,37 +47,131 @@ void check_memory(const Scene& scene, bool force) {
   if (!refusal.empty()) throw InputError(refusal);
 }
 
-int run_command(const std::string& problem, const std::vector<std::string>& sets,
-                std::string out_dir, bool quiet, bool force, const std::string& command_line) {
-  // 1. Read and validate the scene; refuse what cannot fit in memory.
-  const Scene scene = read_problem_file(problem, sets);
-  check_memory(scene, force);
-  if (!quiet) std::cout << describe(scene) << "\n";
+// The exit status of a run stopped on request (docs/restart.md).
+constexpr int stopped_status = 3;
 
-  // 2. Run it.
+std::string text_of_file(const std::string& path) {
+  std::ifstream stream(path, std::ios::binary);
+  std::ostringstream text;
+  text << stream.rdbuf();
+  return text.str();
+}
+
+// What `run` was asked for: a problem to start, or a result file to continue.
+struct RunRequest {
+  std::string problem;
+  std::vector<std::string> sets;
+  std::string out_dir, resume;
+  double checkpoint_minutes = 1;
+  bool quiet = false, force = false;
+  std::string command_line;
+};
+
+// A resume: the checkpoint and results so far, and the problem they belong to. The
+// problem is the file given, or else the file the run started from (or its recorded text
+// when that file is gone); a problem or --set list that differs from the recorded one, or
+// another latfrac version, is refused unless --force.
+Scene resumed_scene(const RunRequest& request, ResumePoint& point) {
+  point.checkpoint = read_checkpoint(request.resume);
+  point.result = read_result_file(request.resume);
+  const Provenance& recorded = point.result.provenance;
+  const RunCheckpoint& checkpoint = point.checkpoint;
+  const std::string path = request.problem.empty() ? checkpoint.problem_path : request.problem;
+  std::error_code missing;
+  const bool readable = !path.empty() && fs::is_regular_file(path, missing);
+  const std::string text = readable ? text_of_file(path) : recorded.problem;
+  const std::vector<std::string>& sets = request.sets.empty() ? checkpoint.overrides : request.sets;
+  if (!request.force) {
+    const std::string advice = "; pass --force to resume anyway";
+    if (text != recorded.problem) {
+      throw InputError("cannot resume '" + request.resume + "': the problem file '" + path +
+                       "' differs from the problem the run started with (recorded in the result "
+                       "file's /provenance problem)" +
+                       advice);
+    }
+    if (sets != checkpoint.overrides) {
+      std::string list;
+      for (const std::string& set : checkpoint.overrides) list += " --set " + set;
+      throw InputError("cannot resume '" + request.resume +
+                       "': the --set overrides differ from "
+                       "those the run started with (" +
+                       (list.empty() ? " none" : list) + ")" + advice);
+    }
+    if (recorded.version != code_version() || recorded.git_commit != code_commit()) {
+      throw InputError("cannot resume '" + request.resume + "': it was written by latfrac " +
+                       recorded.version + " (commit " + recorded.git_commit + "), this is " +
+                       code_version() + " (commit " + code_commit() + ")" + advice);
+    }
+  }
+  return parse_problem(text, path.empty() ? request.resume : path, sets);
+}
+
+int run_command(const RunRequest& request) {
+  // 1. Read and validate the scene (or the run to continue); refuse what cannot fit. A
+  //    SIGINT or SIGTERM from here on stops the run at its first chance.
+  install_stop_handlers();
+  if (request.problem.empty() && request.resume.empty())
+    throw InputError("run: a problem file is required (or --resume RESULT.h5)");
+  if (!request.resume.empty() && !request.out_dir.empty())
+    throw InputError("run: --resume continues in the result file's directory; leave out -o");
+  if (request.checkpoint_minutes < 0)
+    throw InputError("--checkpoint-every: " + std::to_string(request.checkpoint_minutes) +
+                     " is negative; allowed: minutes >= 0 (0: only when stopping)");
+  ResumePoint point;
+  const bool resuming = !request.resume.empty();
+  const Scene scene =
+      resuming ? resumed_scene(request, point) : read_problem_file(request.problem, request.sets);
+  check_memory(scene, request.force);
+  if (!request.quiet) std::cout << describe(scene) << "\n";
+
+  // 2. The result file is written from the start, at every checkpoint and at the end;
+  //    each write replaces it whole (docs/restart.md).
+  std::string h5;
+  if (resuming) {
+    h5 = request.resume;
+  } else {
+    const std::string out_dir =
+        request.out_dir.empty() ? (fs::path("out") / scene.name).string() : request.out_dir;
+    h5 = (fs::path(out_dir) / scene.name).string() + ".h5";
+  }
+  const std::string base = (fs::path(h5).parent_path() / fs::path(h5).stem()).string();
+  const std::string xmf = base + ".xmf";
+  ResultWriter writer(
+      h5, xmf, request.checkpoint_minutes,
+      resuming ? point.checkpoint.problem_path : scene.source_path,
+      resuming ? (request.sets.empty() ? point.checkpoint.overrides : request.sets) : request.sets,
+      resuming && point.checkpoint.started ? point.result.summary.wall_seconds : 0);
+
+  // 3. Run it.
   RunOptions options;
-  options.command_line = command_line;
-  options.progress = !quiet;
+  options.command_line = request.command_line;
+  options.progress = !request.quiet;
+  options.control = &writer;
+  if (resuming) {
+    options.resume = &point;
+    if (!request.quiet)
+      std::cout << "resuming " << h5 << " from lambda " << point.checkpoint.lambda << " ("
+                << point.result.events.size() << " events)\n";
+  }
   const RunResult result = run_scene(scene, options);
+  if (!result.summary.complete) {
+    std::cerr << "latfrac: stopped at lambda " << result.summary.final_lambda << " after "
+              << result.summary.breaks << " breaks; the results so far and a checkpoint are in "
+              << h5 << "\n  continue with: latfrac run --resume " << h5 << "\n";
+    return stopped_status;
+  }
 
-  // 3. Write the result, its ParaView description and the picture; each file appears
-  //    under its final name only when complete.
-  if (out_dir.empty()) out_dir = (fs::path("out") / scene.name).string();
-  std::error_code error;
-  fs::create_directories(out_dir, error);
-  if (error) throw Error("cannot create output directory '" + out_dir + "': " + error.message());
-  const fs::path base = fs::path(out_dir) / scene.name;
-  const std::string h5 = base.string() + ".h5";
-  write_result_file(h5, result);
-  write_xdmf(base.string() + ".xmf", fs::path(h5).filename().string(), result);
-  const std::string picture = base.string() + "." + scene.output.picture_format;
+  // 4. The complete result, its ParaView description and the picture.
+  writer.finish(result);
+  const std::string picture = base + "." + scene.output.picture_format;
   if (scene.output.picture)
     render_picture(result, result.snapshots.size() - 1, picture, scene.output.picture_options);
 
-  // 4. The summary.
-  if (!quiet) {
-    std::cout << summary_text(result) << "  wrote " << h5 << ", " << base.string() << ".xmf"
-              << (scene.output.picture ? ", " + picture : "") << "\n";
+  // 5. The summary.
+  if (!request.quiet) {
+    std::cout << summary_text(result) << "  wrote " << h5 << ", " << xmf
+              << (scene.output.picture ? ", " + picture : "") << "\n  wrote the result file "
+              << writer.writes() << " times, in " << writer.write_seconds() << " s\n";
   }
   return 0;
 }
@@ -208,14 +311,20 @@ int main(int argc, char** argv) {
   double lambda = std::numeric_limits<double>::quiet_NaN(), exaggeration = -1;
   int width = 1600;
 
+  RunRequest request;
   auto* run = app.add_subcommand("run", "run a problem file and write its results");
-  run->add_option("problem", problem, "the problem file (TOML)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  run->add_option("problem", problem, "the problem file (TOML)")->check(CLI::ExistingFile);
   run->add_option("-o,--output", out_dir, "output directory (default out/<name>/)");
   run->add_option("--set", sets, "override a key: --set lattice.spacing=500");
   run->add_flag("--quiet", quiet, "print nothing but errors");
-  run->add_flag("--force", force, "run even when the memory estimate exceeds the available memory");
+  run->add_flag("--force", force,
+                "run even when the memory estimate exceeds the available memory; resume "
+                "despite a changed problem or another latfrac version");
+  run->add_option("--resume", request.resume,
+                  "continue the stopped run whose incomplete result file this is")
+      ->check(CLI::ExistingFile);
+  run->add_option("--checkpoint-every", request.checkpoint_minutes,
+                  "minutes between checkpoints (default 1; 0: only when stopping)");
 
   auto* check =
       app.add_subcommand("check", "validate a problem file and estimate its size; write nothing");
@@ -283,7 +392,15 @@ int main(int argc, char** argv) {
       std::cout << "latfrac " << LATFRAC_VERSION << " (commit " << LATFRAC_GIT_COMMIT << ")\n";
       return 0;
     }
-    if (*run) return run_command(problem, sets, out_dir, quiet, force, joined(argc, argv));
+    if (*run) {
+      request.problem = problem;
+      request.sets = sets;
+      request.out_dir = out_dir;
+      request.quiet = quiet;
+      request.force = force;
+      request.command_line = joined(argc, argv);
+      return run_command(request);
+    }
     if (*check) return check_command(problem, sets);
     if (*study)
       return study_command(problem, sets, increments, out_dir, relaxation, quiet, force,

@@ -143,10 +143,12 @@ TEST_CASE("a result file is written atomically", "[io]") {
     CHECK(std::filesystem::exists(path));
     CHECK_FALSE(std::filesystem::exists(path + ".partial"));
   }
-  SECTION("a write into a missing directory names the HDF5 call and leaves nothing") {
+  SECTION("a write into a missing directory names the file and the reason, leaves nothing") {
+    // The file is built in memory and written by latfrac itself (result_file.cpp): the
+    // message names the file it could not create and the system's reason.
     const std::string path = scratch.file("no/such/directory/graben.h5");
     CHECK_THAT(thrown_message<Error>([&] { write_result_file(path, sample_result()); }),
-               Catch::Matchers::Contains("H5Fcreate") &&
+               Catch::Matchers::Contains("cannot create '" + path + ".partial'") &&
                    Catch::Matchers::Contains("No such file or directory"));
     CHECK_FALSE(std::filesystem::exists(path));
     CHECK_FALSE(std::filesystem::exists(path + ".partial"));

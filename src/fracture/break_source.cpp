@@ -55,7 +55,7 @@ void BreakSource::take(double lambda) {
   std::vector<CriticalBond> group;
   for (std::int64_t bond : proposed_.tied) group.push_back({bond, index[bond], modes[bond]});
   breaking_.break_group(group, lambda, cascade_id);
-  breaking_.cascade(lambda, cascade_id);
+  breaking_.cascade(lambda, cascade_id, true);
 }
 
 }  // namespace latfrac

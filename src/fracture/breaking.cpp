@@ -25,13 +25,14 @@ void Breaking::break_group(const std::vector<CriticalBond>& group, double lambda
   }
 }
 
-void Breaking::cascade(double lambda, std::int64_t cascade_id) {
+void Breaking::cascade(double lambda, std::int64_t cascade_id, bool may_stop) {
   for (;;) {
     const std::vector<CriticalBond> group =
         evaluator_.critical_group(equilibrium_.model(), equilibrium_.displacement(lambda), 1.0);
     if (group.empty()) return;
     if (cascade_id < 0) cascade_id = new_cascade();
     break_group(group, lambda, cascade_id);
+    if (may_stop && between_groups_) between_groups_(lambda, cascade_id);
   }
 }
 

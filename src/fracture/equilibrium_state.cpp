@@ -133,4 +133,22 @@ void EquilibriumState::adopt(const Vector& free_state, double lambda) {
   path_valid_ = false;
 }
 
+void EquilibriumState::save(RunCheckpoint& checkpoint) const {
+  checkpoint.free_state.assign(state_.data(), state_.data() + state_.size());
+  checkpoint.state_lambda = state_lambda_;
+  checkpoint.state_valid = state_valid_;
+}
+
+void EquilibriumState::restore(const RunCheckpoint& checkpoint,
+                               const std::vector<FragmentEvent>& held, const RunCounters& counts) {
+  fragments_ = held;
+  state_ = Eigen::Map<const Vector>(checkpoint.free_state.data(),
+                                    static_cast<Eigen::Index>(checkpoint.free_state.size()));
+  state_lambda_ = checkpoint.state_lambda;
+  state_valid_ = checkpoint.state_valid && state_.size() == model_.dofs().free_count;
+  path_valid_ = false;
+  relaxation_sweeps_ = counts.relaxation_sweeps;
+  relaxation_unconverged_ = counts.relaxation_unconverged;
+}
+
 }  // namespace latfrac

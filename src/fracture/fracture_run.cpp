@@ -32,17 +32,74 @@ FractureRun::FractureRun(Model& model, std::shared_ptr<const FailureCriterion> c
 RunCounters FractureRun::counters() const {
   RunCounters counters;
   counters.breaks = breaking_.breaks();
-  counters.contact_cycles = settling_.cycles();
+  counters.contact_cycles = resumed_counts_.contact_cycles + settling_.cycles();
   counters.relaxation_sweeps = equilibrium_.relaxation_sweeps();
   counters.relaxation_unconverged = equilibrium_.relaxation_unconverged();
-  counters.solves = solver_.counters().solves + equilibrium_.relaxation_solves();
-  counters.factorizations = solver_.counters().factorizations;
-  counters.factor_updates = solver_.counters().factor_updates;
+  counters.solves =
+      resumed_counts_.solves + solver_.counters().solves + equilibrium_.relaxation_solves();
+  counters.factorizations = resumed_counts_.factorizations + solver_.counters().factorizations;
+  counters.factor_updates = resumed_counts_.factor_updates + solver_.counters().factor_updates;
   return counters;
 }
 
+// The model (pair states, supports) was restored before the solver was built; here the
+// run's own state: counts, held parts, the equilibrium the next solve starts from, the
+// snapshots taken. The fragments in `result` are those held before the run and during it.
+void FractureRun::resume_from(const RunCheckpoint& checkpoint, const RunCounters& counts) {
+  resumed_ = &checkpoint;
+  resumed_counts_ = counts;
+  resumed_counts_.breaks = 0;
+  breaking_.restore(counts.breaks, checkpoint.next_cascade);
+  const auto first_held = result_.fragments.begin() + checkpoint.fragments_at_start;
+  equilibrium_.restore(checkpoint, {first_held, result_.fragments.end()}, counts);
+  result_.fragments.erase(first_held, result_.fragments.end());
+  snapshots_.restore(checkpoint.snapshots_taken);
+}
+
+void FractureRun::save_checkpoint(double lambda, std::int64_t next_step,
+                                  const PairSwitchSource* switches, std::int64_t cascade) {
+  RunCheckpoint checkpoint;
+  checkpoint.started = true;
+  checkpoint.lambda = lambda;
+  checkpoint.next_step = next_step;
+  checkpoint.cascade = cascade;
+  for (PairState state : model_.pair_states())
+    checkpoint.pair_states.push_back(static_cast<std::uint8_t>(state));
+  checkpoint.free_index = model_.dofs().free_index;
+  checkpoint.prescribed_base = model_.dofs().prescribed_base;
+  checkpoint.prescribed_rate = model_.dofs().prescribed_rate;
+  equilibrium_.save(checkpoint);
+  checkpoint.factor = solver_.history();
+  checkpoint.snapshots_taken = static_cast<std::int64_t>(snapshots_.taken());
+  checkpoint.next_cascade = breaking_.next_cascade();
+  if (switches) checkpoint.switches = switches->guard();
+  // The file holds every part held so far; the run's own list is appended only at the end.
+  const std::size_t at_start = result_.fragments.size();
+  checkpoint.fragments_at_start = static_cast<std::int64_t>(at_start);
+  result_.fragments.insert(result_.fragments.end(), equilibrium_.fragments().begin(),
+                           equilibrium_.fragments().end());
+  static_cast<RunCounters&>(result_.summary) = counters();
+  result_.summary.final_lambda = lambda;
+  result_.summary.complete = false;
+  try {
+    control_->save(result_, checkpoint);
+  } catch (...) {
+    result_.fragments.resize(at_start);
+    throw;
+  }
+  result_.fragments.resize(at_start);
+}
+
+void FractureRun::between_events(double lambda, std::int64_t next_step,
+                                 const PairSwitchSource* switches, std::int64_t cascade) {
+  if (!control_) return;
+  const bool stop = control_->stop_requested();
+  if (stop || control_->checkpoint_due()) save_checkpoint(lambda, next_step, switches, cascade);
+  if (stop) throw RunStopped();
+}
+
 void FractureRun::run() {
-  start();
+  if (!resumed_) start();
   if (schedule_.stepping.method == SteppingMethod::fixed) {
     fixed_steps();
   } else if (integrated_) {
@@ -77,25 +134,51 @@ void FractureRun::fixed_steps() {
   const double total = schedule_.total, increment = schedule_.stepping.increment;
   const long steps =
       total == 0 ? 0 : static_cast<long>(std::ceil(std::abs(total) / increment - 1e-9));
-  for (long k = 0; k <= steps; ++k) {
+  const long first = resumed_ ? static_cast<long>(resumed_->next_step) : 0;
+  std::int64_t unfinished = resumed_ ? resumed_->cascade : -1;
+  resumed_ = nullptr;
+  long k = first;
+  breaking_.between_groups(
+      [&](double lambda, std::int64_t cascade) { between_events(lambda, k, nullptr, cascade); });
+  for (; k <= steps; ++k) {
     const double lambda = k == steps ? total : std::copysign(k * increment, total);
-    settling_.settle(lambda);
-    breaking_.cascade(lambda);
+    if (unfinished < 0) settling_.settle(lambda);
+    breaking_.cascade(lambda, unfinished, true);
+    unfinished = -1;
     snapshots_.take_until(lambda, true, [&](double) { take_snapshot(lambda); }, 1e-12);
     progress_.update(lambda, breaking_.breaks());
+    if (k < steps) between_events(lambda, k + 1);
   }
+  breaking_.between_groups(nullptr);
 }
 
 // Breaks first, then contact switches: on a tie the break is taken.
 void FractureRun::event_driven() {
-  settling_.settle(0);
-  breaking_.cascade(0);
   BreakSource breaks(equilibrium_, evaluator_, breaking_);
   PairSwitchSource switches(equilibrium_, settling_, breaking_);
+  breaking_.between_groups(
+      [&](double lambda, std::int64_t cascade) { between_events(lambda, 0, &switches, cascade); });
+  double from = 0;
+  if (resumed_) {
+    from = resumed_->lambda;
+    switches.restore(resumed_->switches);
+    const std::int64_t unfinished = resumed_->cascade;
+    resumed_ = nullptr;
+    if (unfinished >= 0) breaking_.cascade(from, unfinished, true);
+  } else {
+    settling_.settle(0);
+    breaking_.cascade(0, -1, true);
+  }
   follow_events(
-      equilibrium_, {&breaks, &switches}, 0, schedule_.total,
-      [&](double next) { snapshots_.take_until(next, false, [&](double at) { take_snapshot(at); }); },
-      [&](double lambda) { progress_.update(lambda, breaking_.breaks()); });
+      equilibrium_, {&breaks, &switches}, from, schedule_.total,
+      [&](double next) {
+        snapshots_.take_until(next, false, [&](double at) { take_snapshot(at); });
+      },
+      [&](double lambda) {
+        progress_.update(lambda, breaking_.breaks());
+        if (lambda != schedule_.total) between_events(lambda, 0, &switches);
+      });
+  breaking_.between_groups(nullptr);
   snapshots_.take_until(schedule_.total, true, [&](double at) { take_snapshot(at); });
 }
 
@@ -108,8 +191,13 @@ void FractureRun::integrated_events() {
   NonlinearPath path(model_, solver_, evaluator_, options_);
   const double total = schedule_.total;
   double lambda = 0;
-  settling_.settle(lambda);
-  breaking_.cascade(lambda);
+  if (resumed_) {
+    lambda = resumed_->lambda;
+    resumed_ = nullptr;
+  } else {
+    settling_.settle(lambda);
+    breaking_.cascade(lambda);
+  }
   while (true) {
     snapshots_.take_until(lambda, true, [&](double) { take_snapshot(lambda); });
     if (lambda == total) break;
@@ -131,6 +219,7 @@ void FractureRun::integrated_events() {
       breaking_.cascade(lambda);
     }
     progress_.update(lambda, breaking_.breaks());
+    if (lambda != total) between_events(lambda, 0);
   }
 }
 

@@ -42,4 +42,14 @@ void PairSwitchSource::take(double lambda) {
   }
 }
 
+SwitchGuard PairSwitchSource::guard() const {
+  return {sets_lambda_, switch_at_start_, {sets_at_lambda_.begin(), sets_at_lambda_.end()}};
+}
+
+void PairSwitchSource::restore(const SwitchGuard& guard) {
+  sets_lambda_ = guard.lambda;
+  switch_at_start_ = guard.switch_at_start;
+  sets_at_lambda_ = {guard.sets.begin(), guard.sets.end()};
+}
+
 }  // namespace latfrac

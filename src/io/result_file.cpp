@@ -1,15 +1,21 @@
 // Writing a RunResult to an HDF5 result file and reading it back (layout: docs/result-files.md).
 #include "latfrac/io/result_file.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <numeric>
 #include <system_error>
 
-#include "latfrac/base/atomic_write.h"
+#include "checkpoint_group.h"
 #include "hdf5_arrays.h"
 #include "hdf5_handles.h"
+#include "latfrac/base/atomic_write.h"
 #include "latfrac/base/error.h"
 
 namespace latfrac {
@@ -170,24 +176,75 @@ void write_summary(hid_t file, const RunSummary& summary) {
   hdf5::write_attribute(file, group, "relaxation_unconverged", summary.relaxation_unconverged);
   hdf5::write_attribute(file, group, "final_lambda", summary.final_lambda);
   hdf5::write_attribute(file, group, "wall_seconds", summary.wall_seconds);
+  hdf5::write_attribute(file, group, "complete", static_cast<std::uint8_t>(summary.complete));
 }
 
-void write_hdf5(const std::string& file_name, const RunResult& result) {
+// A generous guess of the file's size, so that the in-memory file grows once.
+std::size_t estimated_bytes(const RunResult& result) {
+  const std::size_t nodes = result.node_count(), bonds = result.bond_count();
+  const std::size_t per_snapshot = 8 * 9 * nodes + 9 * bonds;
+  return 8 * 4 * nodes + 17 * bonds + 40 * result.events.size() +
+         result.snapshots.size() * per_snapshot + 20 * bonds + 40 * nodes + (1 << 20);
+}
+
+// Writes bytes to a new file, synced to disk when asked; Error naming the file and the
+// system's reason (a full disk, a file-size limit) when that fails.
+void write_bytes(const std::string& file_name, const std::vector<char>& bytes, bool sync) {
+  const int descriptor = ::open(file_name.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (descriptor < 0) throw Error("cannot create '" + file_name + "': " + std::strerror(errno));
+  std::size_t written = 0;
+  while (written < bytes.size()) {
+    const ssize_t n = ::write(descriptor, bytes.data() + written, bytes.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int reason = errno;
+      ::close(descriptor);
+      throw Error("cannot write '" + file_name + "': " + std::strerror(reason));
+    }
+    written += static_cast<std::size_t>(n);
+  }
+  if (sync && ::fsync(descriptor) != 0) {
+    const int reason = errno;
+    ::close(descriptor);
+    throw Error("cannot sync '" + file_name + "' to disk: " + std::strerror(reason));
+  }
+  if (::close(descriptor) != 0)
+    throw Error("cannot write '" + file_name + "': " + std::strerror(errno));
+}
+
+// The file is built in memory (HDF5's core driver, no backing store) and written to disk
+// in one piece by write_bytes: a full disk is then an error of one write() with the
+// system's message, and HDF5 is never left holding a file it cannot flush.
+void write_hdf5(const std::string& file_name, const RunResult& result,
+                const RunCheckpoint* checkpoint) {
   const std::string quoted = "'" + file_name + "'";
-  hdf5::Handle access = hdf5::checked(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate", quoted);
-  // SEMI: closing fails if an object is still open, instead of silently deferring the close.
-  hdf5::check(H5Pset_fclose_degree(access.get(), H5F_CLOSE_SEMI), "H5Pset_fclose_degree", quoted);
-  hdf5::Handle file =
-      hdf5::checked(H5Fcreate(file_name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()),
-                    H5Fclose, "H5Fcreate", quoted);
-  write_provenance(file.get(), result.provenance);
-  write_scene(file.get(), result.scene);
-  write_lattice(file.get(), result);
-  write_events(file.get(), result.events);
-  write_fragments(file.get(), result.fragments);
-  write_snapshots(file.get(), result);
-  write_summary(file.get(), result.summary);
-  file.close("H5Fclose", quoted);
+  std::vector<char> image;
+  {
+    hdf5::Handle access = hdf5::checked(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate", quoted);
+    // SEMI: closing fails if an object is still open, instead of silently deferring it.
+    hdf5::check(H5Pset_fclose_degree(access.get(), H5F_CLOSE_SEMI), "H5Pset_fclose_degree", quoted);
+    hdf5::check(H5Pset_fapl_core(access.get(), estimated_bytes(result), 0), "H5Pset_fapl_core",
+                quoted);
+    hdf5::Handle file =
+        hdf5::checked(H5Fcreate(file_name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()),
+                      H5Fclose, "H5Fcreate", quoted);
+    write_provenance(file.get(), result.provenance);
+    write_scene(file.get(), result.scene);
+    write_lattice(file.get(), result);
+    write_events(file.get(), result.events);
+    write_fragments(file.get(), result.fragments);
+    write_snapshots(file.get(), result);
+    write_summary(file.get(), result.summary);
+    if (checkpoint) write_checkpoint_group(file.get(), *checkpoint);
+    hdf5::check(H5Fflush(file.get(), H5F_SCOPE_LOCAL), "H5Fflush", quoted);
+    const ssize_t size = H5Fget_file_image(file.get(), nullptr, 0);
+    if (size < 0) hdf5::fail("H5Fget_file_image", quoted);
+    image.resize(static_cast<std::size_t>(size));
+    if (H5Fget_file_image(file.get(), image.data(), image.size()) < 0)
+      hdf5::fail("H5Fget_file_image", quoted);
+    file.close("H5Fclose", quoted);
+  }
+  write_bytes(file_name, image, checkpoint != nullptr);
 }
 
 // Rows of a 1-D dataset (columns == 0) or of a rows x columns dataset.
@@ -279,6 +336,9 @@ RunSummary read_summary(hid_t file) {
   summary.relaxation_unconverged = optional_count("relaxation_unconverged");
   summary.final_lambda = hdf5::read_attribute<double>(file, group, "final_lambda");
   summary.wall_seconds = hdf5::read_attribute<double>(file, group, "wall_seconds");
+  // Files written before runs were written as they went are complete.
+  summary.complete = H5Aexists_by_name(file, group.c_str(), "complete", H5P_DEFAULT) <= 0 ||
+                     hdf5::read_attribute<std::uint8_t>(file, group, "complete") != 0;
   return summary;
 }
 
@@ -311,18 +371,25 @@ RunResult read_contents(hid_t file) {
 
 }  // namespace
 
-void write_result_file(const std::string& path, const RunResult& result) {
+void write_result_file(const std::string& path, const RunResult& result,
+                       const RunCheckpoint* checkpoint) {
   check_sizes(result);
   check_finite(result);
   hdf5::QuietErrors quiet;
   try {
-    write_atomically(path, [&](const std::string& partial) { write_hdf5(partial, result); });
+    write_atomically(path,
+                     [&](const std::string& partial) { write_hdf5(partial, result, checkpoint); });
   } catch (const Error& error) {
     throw Error("cannot write result file '" + path + "': " + error.what());
   }
 }
 
-RunResult read_result_file(const std::string& path) {
+namespace {
+
+// Opens a latfrac result file for reading and calls read(file); InputError for a missing,
+// non-HDF5 or non-latfrac file, or for a missing or misshapen object.
+template <class Read>
+auto read_from(const std::string& path, Read read) {
   hdf5::QuietErrors quiet;
   const std::string quoted = "'" + path + "'";
   std::error_code ignored;
@@ -340,13 +407,26 @@ RunResult read_result_file(const std::string& path) {
                        "it has no /provenance group");
     }
     try {
-      return read_contents(file.get());
+      return read(file.get());
     } catch (const InputError& error) {
       throw InputError("result file " + quoted + " is incomplete or damaged: " + error.what());
     }
   } catch (const Error& error) {
     throw Error("cannot read result file " + quoted + ": " + error.what());
   }
+}
+
+}  // namespace
+
+RunResult read_result_file(const std::string& path) { return read_from(path, read_contents); }
+
+RunCheckpoint read_checkpoint(const std::string& path) {
+  const bool complete = read_from(path, [](hid_t file) { return read_summary(file).complete; });
+  if (complete) {
+    throw InputError("'" + path + "' is the result of a run that finished: there is nothing " +
+                     "to resume");
+  }
+  return read_from(path, read_checkpoint_group);
 }
 
 }  // namespace latfrac

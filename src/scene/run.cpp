@@ -25,12 +25,15 @@ std::string utc_timestamp() {
   return text;
 }
 
+std::string code_version() { return LATFRAC_VERSION; }
+std::string code_commit() { return LATFRAC_GIT_COMMIT; }
+
 namespace {
 
 Provenance provenance_of(const Scene& scene, const RunOptions& options) {
   Provenance p;
-  p.version = LATFRAC_VERSION;
-  p.git_commit = LATFRAC_GIT_COMMIT;
+  p.version = code_version();
+  p.git_commit = code_commit();
   p.command_line = options.command_line;
   p.problem = scene.source_text;
   p.created = utc_timestamp();
@@ -56,6 +59,36 @@ void run_elastic(const Scene& scene, const Model& model, EquilibriumSolver& solv
         make_snapshot(model, model.full_displacement(free_displacement, lambda), lambda, nullptr));
     progress.update(lambda, 0);
   }
+}
+
+// Puts the model into the checkpoint's pair states and supports (before a solver exists).
+void restore_model(Model& model, const RunCheckpoint& checkpoint, const std::string& source) {
+  const auto bonds = static_cast<std::size_t>(model.lattice.bond_count());
+  const auto dofs = static_cast<std::size_t>(model.dofs().dof_count());
+  if (checkpoint.pair_states.size() != bonds || checkpoint.free_index.size() != dofs ||
+      checkpoint.prescribed_base.size() != dofs || checkpoint.prescribed_rate.size() != dofs) {
+    throw InputError(source + ": the checkpoint does not fit this problem's model (it has " +
+                     std::to_string(checkpoint.pair_states.size()) + " bonds and " +
+                     std::to_string(checkpoint.free_index.size()) + " degrees of freedom, the " +
+                     "problem " + std::to_string(bonds) + " and " + std::to_string(dofs) + ")");
+  }
+  // The pair states of the last factorization: the solver replays the changes since.
+  const EquilibriumSolver::History& factor = checkpoint.factor;
+  if (factor.factor_current && factor.factored_states.size() != bonds)
+    throw InputError(source +
+                     ": the checkpoint's factor history does not fit this problem's model");
+  const std::vector<std::uint8_t>& states =
+      factor.factor_current ? factor.factored_states : checkpoint.pair_states;
+  ModelEditor editor(model);
+  for (std::size_t b = 0; b < bonds; ++b)
+    editor.set_state(static_cast<std::int64_t>(b), static_cast<PairState>(states[b]));
+  DofMap map;
+  map.dim = model.dim();
+  map.free_index = checkpoint.free_index;
+  map.prescribed_base = checkpoint.prescribed_base;
+  map.prescribed_rate = checkpoint.prescribed_rate;
+  for (std::int64_t index : map.free_index) map.free_count += index >= 0 ? 1 : 0;
+  editor.set_dofs(std::move(map));
 }
 
 }  // namespace
@@ -88,6 +121,9 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
         "method only (stepping.method = \"fixed\"): events need the exact affine path");
   }
   const auto start = std::chrono::steady_clock::now();
+  // A checkpoint written before the run began is continued by starting afresh.
+  const ResumePoint* resume =
+      options.resume && options.resume->checkpoint.started ? options.resume : nullptr;
   RunResult result;
   result.provenance = provenance_of(scene, options);
   result.scene = {scene.name, scene.lattice.dim, scene.lattice.spacing, "",
@@ -96,17 +132,50 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   // One criterion object, resolved once, gives the model its strengths and the run its f.
   const std::shared_ptr<const FailureCriterion> criterion =
       scene.strength ? make_criterion(*scene.strength, scene.lattice.dim) : nullptr;
+  if (criterion) result.scene.criterion = to_string(scene.strength->criterion);
   Model model = build_model(scene, criterion.get());
   record_lattice(model, result);
   result.fragments = prepare_supports(model, scene.source_path);
+  double wall_before = 0;
+  if (resume) {
+    if (resume->result.positions != result.positions || resume->result.bonds != result.bonds)
+      throw InputError(scene.source_path + ": the result file's lattice is not this problem's");
+    restore_model(model, resume->checkpoint, scene.source_path);
+    result.provenance = resume->result.provenance;
+    result.events = resume->result.events;
+    result.snapshots = resume->result.snapshots;
+    result.fragments = resume->result.fragments;
+    wall_before = resume->result.summary.wall_seconds;
+  } else if (options.control) {
+    // The file exists from the start: lattice and provenance, nothing run yet.
+    RunCheckpoint not_started;
+    result.summary.complete = false;
+    options.control->save(result, not_started);
+    result.summary.complete = true;
+  }
   EquilibriumSolver solver(model, scene.solver);
+  if (resume) {
+    std::vector<PairState> states;
+    for (std::uint8_t state : resume->checkpoint.pair_states)
+      states.push_back(static_cast<PairState>(state));
+    solver.rebuild(resume->checkpoint.factor, states);
+  }
   ProgressLine progress(options.progress);
 
   if (criterion) {
-    result.scene.criterion = to_string(scene.strength->criterion);
     FractureRun fracture(model, criterion, scene.strength->bond_stress, schedule_of(scene),
                          scene.solver, solver, progress, result);
-    fracture.run();
+    fracture.set_control(options.control);
+    if (resume) fracture.resume_from(resume->checkpoint, resume->result.summary);
+    try {
+      fracture.run();
+    } catch (const RunStopped&) {
+      progress.finish();
+      result.summary.wall_seconds =
+          wall_before +
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return result;  // as saved: summary.complete is false
+    }
     static_cast<RunCounters&>(result.summary) = fracture.counters();
   } else {
     run_elastic(scene, model, solver, progress, result);
@@ -117,8 +186,9 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   progress.finish();
 
   result.summary.final_lambda = scene.loading.total;
+  result.summary.complete = true;
   result.summary.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      wall_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 
@@ -129,6 +199,7 @@ std::string summary_text(const RunResult& result) {
        << result.scene.spacing << " m, "
        << (result.scene.criterion.empty() ? "elastic" : result.scene.criterion) << ")\n"
        << "  nodes " << result.node_count() << ", bonds " << result.bond_count() << "\n"
+       << (s.complete ? "" : "  incomplete: written during the run, or the run stopped (latfrac run --resume continues it)\n")
        << "  final lambda " << s.final_lambda << ", bonds broken " << s.breaks << ", events "
        << result.events.size() << "\n"
        << "  parts held for lack of support " << result.fragments.size()

@@ -41,6 +41,51 @@ void EquilibriumSolver::refactorize(const Vector& free_displacement, double lamb
   ++counters_.factorizations;
   factor_current_ = true;
   updates_since_factorization_ = 0;
+  factored_states_.resize(model_.pair_states().size());
+  for (std::size_t b = 0; b < factored_states_.size(); ++b)
+    factored_states_[b] = static_cast<std::uint8_t>(model_.pair_states()[b]);
+  changes_since_factorization_.clear();
+}
+
+EquilibriumSolver::History EquilibriumSolver::history() const {
+  History h;
+  // Only a factor of the linear stiffness (refactorize) has a history to replay; a
+  // resume otherwise starts from a fresh factorization.
+  h.factor_current = factor_current_ && model_.dofs().free_count > 0 &&
+                     factored_states_.size() == model_.pair_states().size();
+  if (h.factor_current) {
+    h.factored_states = factored_states_;
+    h.changes = changes_since_factorization_;
+  }
+  h.solution_valid = last_solution_valid_;
+  if (last_solution_valid_) {
+    h.solution_lambda = last_lambda_;
+    h.solution = last_solution_;
+    h.pending_forces = pending_forces_;
+  }
+  return h;
+}
+
+void EquilibriumSolver::rebuild(const History& history, const std::vector<PairState>& states) {
+  if (history.factor_current) {
+    refactorize(Vector::Zero(model_.dofs().free_count), 0.0);
+    for (const auto& [bond, state] : history.changes)
+      set_pair_state(bond, static_cast<PairState>(state));
+  }
+  for (std::size_t b = 0; b < states.size(); ++b) {
+    if (model_.state(static_cast<std::int64_t>(b)) == states[b]) continue;
+    if (history.factor_current)
+      throw Error("a checkpoint's factor history does not lead to its pair states");
+    editor_.set_state(static_cast<std::int64_t>(b), states[b]);
+  }
+  loads_current_ = false;
+  if (history.solution_valid) {
+    last_solution_ = history.solution;
+    last_lambda_ = history.solution_lambda;
+    last_solution_valid_ = true;
+    pending_forces_ = history.pending_forces;
+  }
+  counters_ = {};
 }
 
 void EquilibriumSolver::update_factor(std::int64_t bond, const std::vector<RankOneTerm>& terms,
@@ -123,6 +168,8 @@ void EquilibriumSolver::append_on_bond(std::int64_t bond, const Vec3& v,
 // contact spring).
 void EquilibriumSolver::set_pair_state(std::int64_t bond, PairState state) {
   if (model_.state(bond) == state) return;
+  if (factor_current_)
+    changes_since_factorization_.push_back({bond, static_cast<std::uint8_t>(state)});
   const PairSprings springs = model_.springs(bond);
   const InteractionLaw* old_law = model_.law_of(bond);
   std::vector<RankOneTerm> removed =

@@ -71,6 +71,7 @@ struct EquilibriumSolver::Kinsol {
     }
     ++s.counters_.factorizations;
     s.factor_current_ = true;
+    s.factored_states_.clear();  // a tangent at some displacement: no history to replay
     return 0;
   }
   static int solve(SUNLinearSolver ls, SUNMatrix, N_Vector x, N_Vector b, realtype) {

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "latfrac/base/progress.h"
@@ -36,9 +37,20 @@ class Breaking {
   // by re-equilibration, without testing the others of the group again.
   void break_group(const std::vector<CriticalBond>& group, double lambda, std::int64_t cascade_id);
   // Breaks until no intact bond has f >= 1 at lambda; a new cascade id unless one is given.
-  void cascade(double lambda, std::int64_t cascade_id = -1);
+  // With may_stop, calls the hook set by between_groups() after each group: where a run
+  // can save a checkpoint and stop inside a long cascade (run_control.h).
+  void cascade(double lambda, std::int64_t cascade_id = -1, bool may_stop = false);
+  void between_groups(std::function<void(double lambda, std::int64_t cascade_id)> hook) {
+    between_groups_ = std::move(hook);
+  }
 
   std::int64_t breaks() const { return breaks_; }
+  std::int64_t next_cascade() const { return next_cascade_; }
+  // A resumed run's counts (run_control.h).
+  void restore(std::int64_t breaks, std::int64_t next_cascade) {
+    breaks_ = breaks;
+    next_cascade_ = next_cascade;
+  }
 
  private:
   EquilibriumState& equilibrium_;
@@ -48,6 +60,7 @@ class Breaking {
   RunResult& result_;
   std::int64_t breaks_ = 0;
   std::int64_t next_cascade_ = 1;
+  std::function<void(double, std::int64_t)> between_groups_;
 };
 
 }  // namespace latfrac

@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "latfrac/fracture/run_control.h"
 #include "latfrac/fracture/run_result.h"
 #include "latfrac/mechanics/fragments.h"
 #include "latfrac/solvers/equilibrium.h"
@@ -58,6 +59,12 @@ class EquilibriumState {
   void change_pairs(const std::vector<PairChange>& changes, double lambda, const Vector& before);
   // Takes a free displacement computed elsewhere (the integrated path) as the state at lambda.
   void adopt(const Vector& free_state, double lambda);
+
+  // The state the next solve starts from (run_control.h), and a resumed run's: the
+  // parts held so far, that state, and the relaxation counts.
+  void save(RunCheckpoint& checkpoint) const;
+  void restore(const RunCheckpoint& checkpoint, const std::vector<FragmentEvent>& held,
+               const RunCounters& counts);
 
   // Parts held for lack of support since the run started, in order.
   const std::vector<FragmentEvent>& fragments() const { return fragments_; }

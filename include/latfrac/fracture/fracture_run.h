@@ -21,6 +21,8 @@
 #include "latfrac/fracture/breaking.h"
 #include "latfrac/fracture/equilibrium_state.h"
 #include "latfrac/fracture/pair_settling.h"
+#include "latfrac/fracture/pair_switch_source.h"
+#include "latfrac/fracture/run_control.h"
 #include "latfrac/fracture/run_result.h"
 #include "latfrac/fracture/schedule.h"
 #include "latfrac/fracture/snapshots.h"
@@ -35,8 +37,15 @@ class FractureRun {
               BondStress reading, const Schedule& schedule, const SolverOptions& options,
               EquilibriumSolver& solver, ProgressLine& progress, RunResult& result);
 
-  // Runs from lambda = 0 to the schedule's total, by its stepping method.
+  // Runs from lambda = 0 (or from the checkpoint given to resume_from) to the schedule's
+  // total, by its stepping method. With a control, between events it saves checkpoints
+  // when they are due and, when a stop is requested, saves one and throws RunStopped.
   void run();
+  void set_control(RunControl* control) { control_ = control; }
+  // Continue from a checkpoint (run_control.h): `result` already holds the events and
+  // snapshots up to it, and the model its pair states and supports; `counts` are the
+  // counters the run had reached.
+  void resume_from(const RunCheckpoint& checkpoint, const RunCounters& counts);
   // Follow paths with CVODE and KINSOL (docs/large-kinematics.md) even when the bond law
   // is linear and the closed-form route would serve: for comparing the two routes.
   void use_integrated_path(bool on) { integrated_ = on; }
@@ -49,6 +58,11 @@ class FractureRun {
   void fixed_steps();
   void event_driven();
   void integrated_events();
+  // Between two events: a checkpoint if one is due or a stop is asked for, then the stop.
+  void between_events(double lambda, std::int64_t next_step,
+                      const PairSwitchSource* switches = nullptr, std::int64_t cascade = -1);
+  void save_checkpoint(double lambda, std::int64_t next_step, const PairSwitchSource* switches,
+                       std::int64_t cascade);
   void take_snapshot(double lambda);
   void finish();
 
@@ -64,6 +78,9 @@ class FractureRun {
   Breaking breaking_;
   SnapshotSchedule snapshots_;
   bool integrated_ = false;
+  RunControl* control_ = nullptr;
+  const RunCheckpoint* resumed_ = nullptr;  // set by resume_from until run() starts
+  RunCounters resumed_counts_;              // the solver's counts before the resume
 };
 
 }  // namespace latfrac

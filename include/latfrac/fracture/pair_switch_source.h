@@ -10,12 +10,13 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "latfrac/fracture/breaking.h"
 #include "latfrac/fracture/event_source.h"
+#include "latfrac/fracture/run_control.h"
 
 namespace latfrac {
 
@@ -26,6 +27,9 @@ class PairSwitchSource final : public EventSource {
   double propose(const AffinePath& path, double from, double to) override;
   void reached(double lambda) override;
   void take(double lambda) override;
+  // The guard against cycling, for a checkpoint and a resume.
+  SwitchGuard guard() const;
+  void restore(const SwitchGuard& guard);
 
  private:
   EquilibriumState& equilibrium_;

@@ -67,8 +67,9 @@ struct RunCounters {
 };
 
 struct RunSummary : RunCounters {
-  double final_lambda = 0;
+  double final_lambda = 0;  // the total; in an incomplete file, the lambda reached
   double wall_seconds = 0;
+  bool complete = true;  // false while the run is going on, or when it stopped
 };
 
 struct RunResult {

@@ -36,6 +36,9 @@ class SnapshotSchedule {
   }
   // The next snapshot lambda, or `otherwise` when all are taken.
   double next_or(double otherwise) const { return next_ < lambdas_.size() ? lambdas_[next_] : otherwise; }
+  // How many are taken; a resumed run's count.
+  std::size_t taken() const { return next_; }
+  void restore(std::size_t taken) { next_ = taken; }
 
  private:
   std::vector<double> lambdas_;

@@ -8,16 +8,24 @@
 
 #include <string>
 
+#include "latfrac/fracture/run_control.h"
 #include "latfrac/fracture/run_result.h"
 
 namespace latfrac {
 
 // Throws Error (naming the HDF5 call and object) if writing fails, after removing the
 // partial file; throws Error before creating anything if result's arrays disagree in size.
-void write_result_file(const std::string& path, const RunResult& result);
+// With a checkpoint, the file is an incomplete one that a run can continue from (its
+// /checkpoint group, docs/restart.md), synced to disk before it is renamed into place.
+void write_result_file(const std::string& path, const RunResult& result,
+                       const RunCheckpoint* checkpoint = nullptr);
 
 // Throws InputError if path is missing, is not HDF5, is not a latfrac result, or lacks a
 // dataset or attribute, or holds one of the wrong shape; Error if an HDF5 call fails.
 RunResult read_result_file(const std::string& path);
+
+// The checkpoint of an incomplete result file. Throws InputError when the run finished
+// (nothing to resume) or the file has no usable /checkpoint group.
+RunCheckpoint read_checkpoint(const std::string& path);
 
 }  // namespace latfrac

@@ -5,14 +5,25 @@
 #include <string>
 #include <vector>
 
+#include "latfrac/fracture/run_control.h"
 #include "latfrac/fracture/run_result.h"
 #include "latfrac/scene/scene.h"
 
 namespace latfrac {
 
+// A run to continue: the results so far (an incomplete result file) and its checkpoint.
+struct ResumePoint {
+  RunResult result;
+  RunCheckpoint checkpoint;
+};
+
 struct RunOptions {
   std::string command_line;  // recorded in the provenance
   bool progress = true;      // the progress line on stderr
+  // Between events, asked whether to save a checkpoint and whether to stop; also given
+  // the results at the start (lattice and provenance, before anything is computed).
+  RunControl* control = nullptr;
+  const ResumePoint* resume = nullptr;  // continue this run instead of starting afresh
 };
 
 // The effects a scene names that this version cannot simulate yet (empty: it can run).
@@ -21,11 +32,19 @@ std::vector<std::string> unsupported_effects(const Scene& scene);
 // Runs a scene along lambda from 0 to loading.total: a fracture run (fracture_run.h) when
 // it has a [strength] section, equilibrium at each snapshot otherwise. Stores a snapshot
 // at each requested lambda (the final state when none are requested). Throws InputError
-// for a scene with unsupported effects, Error when a solve fails.
+// for a scene with unsupported effects, Error when a solve fails. A run stopped on request
+// (options.control) returns what it has, with summary.complete false; a resumed one
+// returns the whole run's results, the resumed part's included, with the provenance of
+// the run's start. Throws InputError when a checkpoint does not fit the scene's model.
 RunResult run_scene(const Scene& scene, const RunOptions& options);
 
 // The current time in ISO 8601 (UTC), as provenance records it.
 std::string utc_timestamp();
+
+// This build's version and commit, as provenance records them (one definition, so that
+// a resume compares with exactly what a run writes).
+std::string code_version();
+std::string code_commit();
 
 // The summary printed at the end of a run and by `latfrac analyze`.
 std::string summary_text(const RunResult& result);

@@ -11,13 +11,16 @@
 // the unit-extension right-hand sides together.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
-#include "latfrac/solvers/cholesky.h"
 #include "latfrac/mechanics/model.h"
-#include "latfrac/solvers/solver_options.h"
 #include "latfrac/mechanics/stiffness.h"
+#include "latfrac/solvers/cholesky.h"
+#include "latfrac/solvers/solver_options.h"
 
 namespace latfrac {
 
@@ -86,6 +89,24 @@ class EquilibriumSolver {
   // max |R(0, lambda)|: the size of the load at lambda, N.
   double load_scale(double lambda);
 
+  // How the factor came about and the last checked solution: what a resumed run needs to
+  // rebuild the factor bit for bit (a fresh factorization rounds differently from one
+  // that was updated, and a long run would drift apart; docs/restart.md).
+  struct History {
+    bool factor_current = false;
+    std::vector<std::uint8_t> factored_states;  // pair states at the last factorization
+    std::vector<std::pair<std::int64_t, std::uint8_t>> changes;  // set_pair_state since
+    bool solution_valid = false;
+    double solution_lambda = 0;
+    Vector solution;
+    CholeskyFactor::Column pending_forces;
+  };
+  History history() const;
+  // With the model in history.factored_states (when the factor was current) and in its
+  // present supports: factorizes, replays the changes and takes the last solution back,
+  // and leaves the model in `states`. The counters start again from zero.
+  void rebuild(const History& history, const std::vector<PairState>& states);
+
   const SolverCounters& counters() const { return counters_; }
   StiffnessMatrix& stiffness() { return stiffness_; }
   CholeskyFactor& factor() { return factor_; }
@@ -139,6 +160,8 @@ class EquilibriumSolver {
   double last_lambda_ = 0;
   bool last_solution_valid_ = false;
   CholeskyFactor::Column pending_forces_;
+  std::vector<std::uint8_t> factored_states_;
+  std::vector<std::pair<std::int64_t, std::uint8_t>> changes_since_factorization_;
 
   Model& model_;
   ModelEditor editor_;

@@ -1,0 +1,149 @@
+// Writing and reading the /checkpoint group: the state a stopped run continues from.
+#include "checkpoint_group.h"
+
+#include <sstream>
+
+#include "hdf5_arrays.h"
+#include "latfrac/base/error.h"
+
+namespace latfrac {
+namespace {
+
+const std::string group = "/checkpoint";
+
+std::string joined_lines(const std::vector<std::string>& lines) {
+  std::string text;
+  for (const std::string& line : lines) text += line + "\n";
+  return text;
+}
+
+std::vector<std::string> split_lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream stream(text);
+  for (std::string line; std::getline(stream, line);) lines.push_back(line);
+  return lines;
+}
+
+hsize_t length_of(hid_t file, const std::string& path) {
+  const hdf5::Shape shape = hdf5::dataset_shape(file, path);
+  if (shape.size() != 1) throw InputError("dataset " + path + " is not a 1-D array");
+  return shape[0];
+}
+
+}  // namespace
+
+void write_checkpoint_group(hid_t file, const RunCheckpoint& c) {
+  hdf5::create_group(file, group);
+  hdf5::write_attribute(file, group, "started", static_cast<std::uint8_t>(c.started));
+  hdf5::write_attribute(file, group, "lambda", c.lambda);
+  hdf5::write_attribute(file, group, "next_step", c.next_step);
+  hdf5::write_attribute(file, group, "cascade", c.cascade);
+  hdf5::write_attribute(file, group, "state_lambda", c.state_lambda);
+  hdf5::write_attribute(file, group, "state_valid", static_cast<std::uint8_t>(c.state_valid));
+  hdf5::write_attribute(file, group, "snapshots_taken", c.snapshots_taken);
+  hdf5::write_attribute(file, group, "next_cascade", c.next_cascade);
+  hdf5::write_attribute(file, group, "fragments_at_start", c.fragments_at_start);
+  hdf5::write_attribute(file, group, "switch_lambda", c.switches.lambda);
+  hdf5::write_attribute(file, group, "switch_at_start",
+                        static_cast<std::uint8_t>(c.switches.switch_at_start));
+  hdf5::write_string_attribute(file, group, "problem_path", c.problem_path);
+  hdf5::write_string_attribute(file, group, "overrides", joined_lines(c.overrides));
+  hdf5::write_dataset(file, group + "/pair_state", c.pair_states, {c.pair_states.size()});
+  hdf5::write_dataset(file, group + "/free_index", c.free_index, {c.free_index.size()});
+  hdf5::write_dataset(file, group + "/prescribed_base", c.prescribed_base,
+                      {c.prescribed_base.size()});
+  hdf5::write_dataset(file, group + "/prescribed_rate", c.prescribed_rate,
+                      {c.prescribed_rate.size()});
+  hdf5::write_dataset(file, group + "/free_state", c.free_state, {c.free_state.size()});
+  const EquilibriumSolver::History& factor = c.factor;
+  hdf5::write_attribute(file, group, "factor_current",
+                        static_cast<std::uint8_t>(factor.factor_current));
+  hdf5::write_attribute(file, group, "solution_valid",
+                        static_cast<std::uint8_t>(factor.solution_valid));
+  hdf5::write_attribute(file, group, "solution_lambda", factor.solution_lambda);
+  hdf5::write_dataset(file, group + "/factored_states", factor.factored_states,
+                      {factor.factored_states.size()});
+  std::vector<std::int64_t> change_bond, pending_index;
+  std::vector<std::uint8_t> change_state;
+  std::vector<double> pending_value;
+  for (const auto& [bond, state] : factor.changes) {
+    change_bond.push_back(bond);
+    change_state.push_back(state);
+  }
+  for (const auto& [index, value] : factor.pending_forces) {
+    pending_index.push_back(index);
+    pending_value.push_back(value);
+  }
+  hdf5::write_dataset(file, group + "/change_bond", change_bond, {change_bond.size()});
+  hdf5::write_dataset(file, group + "/change_state", change_state, {change_state.size()});
+  const std::vector<double> solution(factor.solution.data(),
+                                     factor.solution.data() + factor.solution.size());
+  hdf5::write_dataset(file, group + "/solution", solution, {solution.size()});
+  hdf5::write_dataset(file, group + "/pending_index", pending_index, {pending_index.size()});
+  hdf5::write_dataset(file, group + "/pending_value", pending_value, {pending_value.size()});
+
+  const hsize_t bonds = c.pair_states.size();
+  std::vector<std::uint8_t> sets;
+  for (const std::string& set : c.switches.sets) sets.insert(sets.end(), set.begin(), set.end());
+  hdf5::write_dataset(file, group + "/switch_sets", sets, {c.switches.sets.size(), bonds});
+}
+
+RunCheckpoint read_checkpoint_group(hid_t file) {
+  hdf5::require(file, group, "group");
+  RunCheckpoint c;
+  c.started = hdf5::read_attribute<std::uint8_t>(file, group, "started") != 0;
+  c.lambda = hdf5::read_attribute<double>(file, group, "lambda");
+  c.next_step = hdf5::read_attribute<std::int64_t>(file, group, "next_step");
+  c.cascade = hdf5::read_attribute<std::int64_t>(file, group, "cascade");
+  c.state_lambda = hdf5::read_attribute<double>(file, group, "state_lambda");
+  c.state_valid = hdf5::read_attribute<std::uint8_t>(file, group, "state_valid") != 0;
+  c.snapshots_taken = hdf5::read_attribute<std::int64_t>(file, group, "snapshots_taken");
+  c.next_cascade = hdf5::read_attribute<std::int64_t>(file, group, "next_cascade");
+  c.fragments_at_start = hdf5::read_attribute<std::int64_t>(file, group, "fragments_at_start");
+  c.switches.lambda = hdf5::read_attribute<double>(file, group, "switch_lambda");
+  c.switches.switch_at_start =
+      hdf5::read_attribute<std::uint8_t>(file, group, "switch_at_start") != 0;
+  c.problem_path = hdf5::read_string_attribute(file, group, "problem_path");
+  c.overrides = split_lines(hdf5::read_string_attribute(file, group, "overrides"));
+  const hsize_t bonds = length_of(file, group + "/pair_state");
+  const hsize_t dofs = length_of(file, group + "/free_index");
+  c.pair_states = hdf5::read_dataset<std::uint8_t>(file, group + "/pair_state", {bonds});
+  c.free_index = hdf5::read_dataset<std::int64_t>(file, group + "/free_index", {dofs});
+  c.prescribed_base = hdf5::read_dataset<double>(file, group + "/prescribed_base", {dofs});
+  c.prescribed_rate = hdf5::read_dataset<double>(file, group + "/prescribed_rate", {dofs});
+  const hsize_t free = length_of(file, group + "/free_state");
+  c.free_state = hdf5::read_dataset<double>(file, group + "/free_state", {free});
+  EquilibriumSolver::History& factor = c.factor;
+  factor.factor_current = hdf5::read_attribute<std::uint8_t>(file, group, "factor_current") != 0;
+  factor.solution_valid = hdf5::read_attribute<std::uint8_t>(file, group, "solution_valid") != 0;
+  factor.solution_lambda = hdf5::read_attribute<double>(file, group, "solution_lambda");
+  factor.factored_states = hdf5::read_dataset<std::uint8_t>(
+      file, group + "/factored_states", {length_of(file, group + "/factored_states")});
+  const hsize_t changes = length_of(file, group + "/change_bond");
+  const auto change_bond =
+      hdf5::read_dataset<std::int64_t>(file, group + "/change_bond", {changes});
+  const auto change_state =
+      hdf5::read_dataset<std::uint8_t>(file, group + "/change_state", {changes});
+  for (hsize_t i = 0; i < changes; ++i) factor.changes.push_back({change_bond[i], change_state[i]});
+  const auto solution =
+      hdf5::read_dataset<double>(file, group + "/solution", {length_of(file, group + "/solution")});
+  factor.solution =
+      Eigen::Map<const Vector>(solution.data(), static_cast<Eigen::Index>(solution.size()));
+  const hsize_t pending = length_of(file, group + "/pending_index");
+  const auto pending_index =
+      hdf5::read_dataset<std::int64_t>(file, group + "/pending_index", {pending});
+  const auto pending_value = hdf5::read_dataset<double>(file, group + "/pending_value", {pending});
+  for (hsize_t i = 0; i < pending; ++i)
+    factor.pending_forces.push_back({pending_index[i], pending_value[i]});
+
+  const hdf5::Shape sets_shape = hdf5::dataset_shape(file, group + "/switch_sets");
+  if (sets_shape.size() != 2 || sets_shape[1] != bonds)
+    throw InputError("dataset " + group + "/switch_sets is " + hdf5::shape_text(sets_shape) +
+                     ", expected ? x " + std::to_string(bonds));
+  const auto sets = hdf5::read_dataset<std::uint8_t>(file, group + "/switch_sets", sets_shape);
+  for (hsize_t i = 0; i < sets_shape[0]; ++i)
+    c.switches.sets.emplace_back(sets.begin() + i * bonds, sets.begin() + (i + 1) * bonds);
+  return c;
+}
+
+}  // namespace latfrac

@@ -1,0 +1,160 @@
+// Tests of checkpoints and resume: a run stopped anywhere between events (or between the
+// groups of a cascade) and resumed from its result file gives the uninterrupted run's
+// events, bit for bit (the spec asks for lambdas to 1e-12 relative).
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+
+#include "latfrac/base/error.h"
+#include "latfrac/io/problem_file.h"
+#include "latfrac/io/result_file.h"
+#include "latfrac/io/result_writer.h"
+#include "latfrac/scene/run.h"
+#include "sample_result.h"
+
+namespace latfrac {
+namespace {
+
+using testing::ScratchDirectory;
+
+Scene shipped(const std::string& problem, std::vector<std::string> overrides) {
+  return read_problem_file(std::string(LATFRAC_PROBLEMS_DIR) + "/" + problem, overrides);
+}
+
+// Saves to `path` and stops at its `stop_at`-th chance (each check between events or
+// between groups is one); never stops when stop_at is 0, and then counts the chances.
+class StopAt final : public RunControl {
+ public:
+  StopAt(std::string path, long stop_at) : path_(std::move(path)), stop_at_(stop_at) {}
+  bool stop_requested() const override { return ++chances_ == stop_at_; }
+  bool checkpoint_due() override { return false; }
+  void save(RunResult& result, RunCheckpoint& checkpoint) override {
+    write_result_file(path_, result, &checkpoint);
+  }
+  long chances() const { return chances_; }
+
+ private:
+  std::string path_;
+  long stop_at_;
+  mutable long chances_ = 0;
+};
+
+RunResult run_with(const Scene& scene, RunControl* control, const ResumePoint* resume) {
+  RunOptions options;
+  options.progress = false;
+  options.control = control;
+  options.resume = resume;
+  return run_scene(scene, options);
+}
+
+// Runs the scene, stopping at each of the given chances in turn (counted afresh in each
+// resumed part) and resuming from the file, until it completes.
+RunResult stopped_and_resumed(const Scene& scene, const std::vector<long>& stops,
+                              const std::string& path) {
+  ResumePoint point;
+  bool resuming = false;
+  for (long stop : stops) {
+    StopAt control(path, stop);
+    RunResult result = run_with(scene, &control, resuming ? &point : nullptr);
+    if (result.summary.complete) return result;
+    const RunResult on_disk = read_result_file(path);
+    CHECK_FALSE(on_disk.summary.complete);
+    point.result = on_disk;
+    point.checkpoint = read_checkpoint(path);
+    resuming = true;
+  }
+  return run_with(scene, nullptr, resuming ? &point : nullptr);
+}
+
+void require_same_events(const RunResult& resumed, const RunResult& whole) {
+  REQUIRE(resumed.summary.complete);
+  REQUIRE(resumed.events.size() == whole.events.size());
+  for (std::size_t i = 0; i < whole.events.size(); ++i) {
+    const BreakEvent& a = resumed.events[i];
+    const BreakEvent& b = whole.events[i];
+    INFO("event " << i);
+    REQUIRE(a.bond == b.bond);
+    REQUIRE(a.mode == b.mode);
+    REQUIRE(a.cascade == b.cascade);
+    REQUIRE(std::abs(a.lambda - b.lambda) <= 1e-12 * std::abs(b.lambda));
+    REQUIRE(std::abs(a.failure_index - b.failure_index) <= 1e-12 * std::abs(b.failure_index));
+  }
+  REQUIRE(resumed.summary.breaks == whole.summary.breaks);
+  REQUIRE(resumed.snapshots.size() == whole.snapshots.size());
+  REQUIRE(resumed.fragments.size() == whole.fragments.size());
+  const Snapshot& last = resumed.snapshots.back();
+  const Snapshot& expected = whole.snapshots.back();
+  REQUIRE(last.bond_intact == expected.bond_intact);
+  for (std::size_t k = 0; k < expected.displacement.size(); ++k)
+    REQUIRE(std::abs(last.displacement[k] - expected.displacement[k]) <=
+            1e-9 * (std::abs(expected.displacement[k]) + 1e-3));
+}
+
+// Stops at a few chances drawn with fixed seeds, once each, and at three in one run.
+void check_resumes(const Scene& scene) {
+  ScratchDirectory scratch;
+  const std::string path = scratch.file("run.h5");
+  StopAt counter(path, 0);
+  const RunResult whole = run_with(scene, &counter, nullptr);
+  const long chances = counter.chances();
+  REQUIRE(chances > 3);
+  for (unsigned seed : {1u, 2u}) {
+    std::mt19937 random(seed);
+    const long stop = std::uniform_int_distribution<long>(1, chances)(random);
+    INFO("seed " << seed << ": stopped at chance " << stop << " of " << chances);
+    require_same_events(stopped_and_resumed(scene, {stop}, path), whole);
+  }
+  INFO("stopped three times");
+  require_same_events(stopped_and_resumed(scene, {1, chances / 3, chances / 3}, path), whole);
+}
+
+TEST_CASE("a resumed 2-D fixed-step run gives the uninterrupted events", "[restart]") {
+  check_resumes(shipped("fig6-elliptic-graben-2d.toml", {"lattice.spacing=2000"}));
+  check_resumes(
+      shipped("fig6-elliptic-graben-2d.toml", {"lattice.spacing=2000", "contact.enabled=true"}));
+}
+
+TEST_CASE("a resumed 2-D event-driven run gives the uninterrupted events", "[restart]") {
+  check_resumes(shipped("fig4a-tensile-2d.toml",
+                        {"lattice.spacing=2000", "stepping.method=event", "contact.enabled=true"}));
+  check_resumes(
+      shipped("fig6-elliptic-graben-2d.toml", {"lattice.spacing=2000", "stepping.method=event"}));
+}
+
+TEST_CASE("a resumed 3-D run gives the uninterrupted events", "[restart]") {
+  check_resumes(shipped("reference-3d.toml", {"lattice.spacing=5000", "contact.enabled=true"}));
+  check_resumes(shipped("reference-3d.toml", {"lattice.spacing=5000", "stepping.method=event"}));
+}
+
+TEST_CASE("a checkpoint's file is an incomplete result readers can use", "[restart]") {
+  ScratchDirectory scratch;
+  const std::string path = scratch.file("run.h5");
+  const Scene scene = shipped("fig6-elliptic-graben-2d.toml", {"lattice.spacing=2000"});
+  StopAt control(path, 5);
+  const RunResult stopped = run_with(scene, &control, nullptr);
+  CHECK_FALSE(stopped.summary.complete);
+  const RunResult read = read_result_file(path);
+  CHECK_FALSE(read.summary.complete);
+  CHECK(read.events.size() == stopped.events.size());
+  CHECK(read.summary.final_lambda > 0);
+  CHECK(read_checkpoint(path).started);
+
+  // A finished run's file has nothing to resume.
+  const RunResult whole = run_with(scene, nullptr, nullptr);
+  write_result_file(path, whole);
+  CHECK(read_result_file(path).summary.complete);
+  CHECK_THROWS_AS(read_checkpoint(path), InputError);
+}
+
+TEST_CASE("a result file is written by one run at a time", "[restart]") {
+  ScratchDirectory scratch;
+  const std::string path = scratch.file("run.h5");
+  ResultWriter first(path, scratch.file("run.xmf"), 1, "p.toml", {});
+  first.finish(testing::sample_result());
+  ResultWriter second(path, scratch.file("run.xmf"), 1, "p.toml", {});
+  CHECK_THROWS_WITH(second.finish(testing::sample_result()),
+                    Catch::Contains("is being written by another latfrac run"));
+}
+
+}  // namespace
+}  // namespace latfrac
