@@ -81,6 +81,8 @@ void write_checkpoint_group(hid_t file, const RunCheckpoint& c) {
   hdf5::write_dataset(file, group + "/solution", solution, {solution.size()});
   hdf5::write_dataset(file, group + "/pending_index", pending_index, {pending_index.size()});
   hdf5::write_dataset(file, group + "/pending_value", pending_value, {pending_value.size()});
+  hdf5::write_dataset(file, group + "/elimination_order", factor.elimination_order,
+                      {factor.elimination_order.size()});
 
   const hsize_t bonds = c.pair_states.size();
   std::vector<std::uint8_t> sets;
@@ -135,6 +137,10 @@ RunCheckpoint read_checkpoint_group(hid_t file) {
   const auto pending_value = hdf5::read_dataset<double>(file, group + "/pending_value", {pending});
   for (hsize_t i = 0; i < pending; ++i)
     factor.pending_forces.push_back({pending_index[i], pending_value[i]});
+  if (hdf5::exists(file, group + "/elimination_order")) {
+    factor.elimination_order = hdf5::read_dataset<std::int64_t>(
+        file, group + "/elimination_order", {length_of(file, group + "/elimination_order")});
+  }
 
   const hdf5::Shape sets_shape = hdf5::dataset_shape(file, group + "/switch_sets");
   if (sets_shape.size() != 2 || sets_shape[1] != bonds)

@@ -139,6 +139,7 @@ void CholeskyFactor::analyze(StiffnessMatrix& matrix, const std::vector<std::int
   cholmod_l_free_factor(&state_->symbolic, &c);
   inverse_permutation_.clear();
   factorized_ = false;
+  given_ = given;
   cholmod_sparse a = view_of(matrix);
   if (given.empty()) {
     state_->symbolic = cholmod_l_analyze(&a, &c);

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -57,6 +58,7 @@ EquilibriumSolver::History EquilibriumSolver::history() const {
     h.factored_states = factored_states_;
     h.changes = changes_since_factorization_;
   }
+  h.elimination_order = factor_.given_order();
   h.solution_valid = last_solution_valid_;
   if (last_solution_valid_) {
     h.solution_lambda = last_lambda_;
@@ -67,6 +69,11 @@ EquilibriumSolver::History EquilibriumSolver::history() const {
 }
 
 void EquilibriumSolver::rebuild(const History& history, const std::vector<PairState>& states) {
+  if (static_cast<std::int64_t>(history.elimination_order.size()) == model_.dofs().free_count &&
+      model_.dofs().free_count > 0) {
+    analyse(history.elimination_order);
+    factor_current_ = false;
+  }
   if (history.factor_current) {
     refactorize(Vector::Zero(model_.dofs().free_count), 0.0);
     for (const auto& [bond, state] : history.changes)
@@ -365,14 +372,18 @@ Vector EquilibriumSolver::checked_solve(double lambda) {
 void EquilibriumSolver::supports_changed() {
   last_solution_valid_ = false;  // the free dofs are others now
   stiffness_ = StiffnessMatrix(model_);
-  if (model_.dofs().free_count > 0) factor_.analyze(stiffness_, inherited_order());
+  if (model_.dofs().free_count > 0) analyse(inherited_order());
+  reset_kinsol();
+  factor_current_ = false;
+  find_boundary_bonds();
+}
+
+void EquilibriumSolver::analyse(const std::vector<std::int64_t>& given) {
+  factor_.analyze(stiffness_, given);
   const auto& free_index = model_.dofs().free_index;
   analysed_globals_.assign(model_.dofs().free_count, 0);
   for (std::size_t g = 0; g < free_index.size(); ++g)
     if (free_index[g] >= 0) analysed_globals_[free_index[g]] = static_cast<std::int64_t>(g);
-  reset_kinsol();
-  factor_current_ = false;
-  find_boundary_bonds();
 }
 
 // Holding a part only removes dofs. The filled graph of a principal submatrix eliminated

@@ -137,6 +137,8 @@ EquilibriumSolver::EquilibriumSolver(Model& model, const SolverOptions& options)
     : model_(model), editor_(model), options_(options), stiffness_(model), factor_(options.ordering) {
   reset_kinsol();
   find_boundary_bonds();
+  // Analysed now (not at the first factorization) so that holds can inherit the order.
+  if (model_.dofs().free_count > 0) analyse({});
 }
 
 EquilibriumSolver::~EquilibriumSolver() = default;

@@ -31,6 +31,8 @@ class CholeskyFactor {
   // The analysis's elimination order (row k of the permuted matrix is row order[k]);
   // empty before an analysis.
   std::vector<std::int64_t> elimination_order() const;
+  // The order the last analysis was given (empty: the ordering method chose it).
+  const std::vector<std::int64_t>& given_order() const { return given_; }
   // Numeric factorization (analyzes first if needed). Throws SingularStiffness, naming the
   // column where it showed, when the matrix is not positive definite or singular to
   // working precision: a rigid-body motion or a part of the body without support; or when
@@ -101,6 +103,7 @@ class CholeskyFactor {
   WeakestPivot weakest_;
   std::unique_ptr<State> state_;
   std::vector<std::int64_t> inverse_permutation_;
+  std::vector<std::int64_t> given_;
   bool factorized_ = false;
 };
 

@@ -100,6 +100,11 @@ class EquilibriumSolver {
     double solution_lambda = 0;
     Vector solution;
     CholeskyFactor::Column pending_forces;
+    // The order the last analysis was given (free numbering; empty: the ordering method
+    // chose it). Holds inherit the order (supports_changed), so the resumed supports,
+    // ordered afresh, would round differently; analysing with the same input again gives
+    // the same analysis.
+    std::vector<std::int64_t> elimination_order;
   };
   History history() const;
   // With the model in history.factored_states (when the factor was current) and in its
@@ -121,6 +126,9 @@ class EquilibriumSolver {
   // The last analysis's elimination order restricted to the dofs still free, in the new
   // numbering; empty (order afresh) on the first analysis or when a dof became free.
   std::vector<std::int64_t> inherited_order() const;
+  // Analyses the stiffness pattern with `given` (empty: the ordering method) and records
+  // which dof each free index is, for the next inherited_order().
+  void analyse(const std::vector<std::int64_t>& given);
   std::vector<std::int64_t> analysed_globals_;  // free index -> global dof at the last analysis
   void refactorize(const Vector& free_displacement, double lambda);
   // The loads on the free dofs at zero free displacement: load0 (gravity and the fixed
