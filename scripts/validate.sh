@@ -107,7 +107,8 @@ run fig6-event-nocontact fig6-elliptic-graben-2d.toml --set $off --set stepping.
 run fig7c-fixed-nocontact fig7c-drucker-prager-2d.toml --set $off
 run reference-3d-nocontact reference-3d.toml --set $off
 
-# Fig. 6 with contact, event-driven, at finer spacings (the pre-cut moved with the
+# Fig. 6 with contact, event-driven, and Figs 4a, 4b and 7c as shipped (fixed), at finer
+# spacings (the pre-cut moved with the
 # spacing: a quarter spacing right of 30 km, from above the surface row to 25 km).
 echo
 echo "| run (spacing) | at lambda = $early | at the end | wall |"
@@ -116,6 +117,13 @@ run fig6-event-707 fig6-elliptic-graben-2d.toml --set stepping.method=event \
   --set lattice.spacing=707.1 --set 'precut=[{from=[30176.8,30700],to=[30176.8,25e3]}]'
 run fig6-event-500 fig6-elliptic-graben-2d.toml --set stepping.method=event \
   --set lattice.spacing=500 --set 'precut=[{from=[30125,30400],to=[30125,25e3]}]'
+for scene in fig4a-tensile-2d fig4b-tensile-or-shear-2d fig7c-drucker-prager-2d; do
+  short=${scene%%-*}
+  run "$short-fixed-707" "$scene.toml" --set lattice.spacing=707.1 \
+    --set 'precut=[{from=[30176.8,30700],to=[30176.8,25e3]}]'
+  run "$short-fixed-500" "$scene.toml" --set lattice.spacing=500 \
+    --set 'precut=[{from=[30125,30400],to=[30125,25e3]}]'
+done
 run fig6-psi30-event fig6-elliptic-graben-2d.toml --set stepping.method=event \
   --set strength.friction_angle=30
 run fig6-psi20-event fig6-elliptic-graben-2d.toml --set stepping.method=event \
