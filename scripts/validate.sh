@@ -108,8 +108,8 @@ run fig7c-fixed-nocontact fig7c-drucker-prager-2d.toml --set $off
 run reference-3d-nocontact reference-3d.toml --set $off
 
 # Fig. 6 with contact, event-driven, and Figs 4a, 4b and 7c as shipped (fixed), at finer
-# spacings (the pre-cut moved with the
-# spacing: a quarter spacing right of 30 km, from above the surface row to 25 km).
+# spacings (the pre-cut moved with the spacing: a quarter spacing right of 30 km, from
+# above the surface row to 25 km).
 echo
 echo "| run (spacing) | at lambda = $early | at the end | wall |"
 echo "|---|---|---|---|"
