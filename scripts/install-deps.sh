@@ -19,6 +19,8 @@ packages=(
   libexpat1-dev              # the picture tests parse the SVG files
   mpi-default-dev            # SUNDIALS' CMake config asks for MPI
   python3                    # the CLI tests validate JSON output with it
+  hdf5-tools                 # h5dump: the restart tests and scripts/event-lists.sh read event lists
+  bc                         # the restart tests time their stops
 )
 
 missing=()
