@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "criterion_calls.h"
+#include "sampling.h"
 #include "latfrac/base/error.h"
 
 using namespace latfrac;
@@ -217,19 +218,10 @@ namespace {
 double sampled_critical_plane(Criterion criterion, const VoigtStress& stress, int dim,
                               double sigma0, double tau0) {
   double best = 0;
-  const int steps = 720;
-  for (int i = 0; i < steps; ++i) {
-    const double theta = std::numbers::pi * i / steps;
-    for (int j = 0; j < (dim == 2 ? 1 : steps); ++j) {
-      const double phi = 2 * std::numbers::pi * j / steps;
-      const Eigen::Vector3d n = dim == 2 ? Eigen::Vector3d(std::cos(theta), 0, std::sin(theta))
-                                         : Eigen::Vector3d(std::sin(theta) * std::cos(phi),
-                                                           std::sin(theta) * std::sin(phi),
-                                                           std::cos(theta));
-      const ResolvedStress r = resolve_on(stress, n);
-      best = std::max(best, failure_index(criterion, r.normal, r.shear.norm(), sigma0, tau0).value);
-    }
-  }
+  for_each_sampled_plane(dim, [&](const Eigen::Vector3d& n) {
+    const ResolvedStress r = resolve_on(stress, n);
+    best = std::max(best, failure_index(criterion, r.normal, r.shear.norm(), sigma0, tau0).value);
+  });
   return best;
 }
 

@@ -8,6 +8,7 @@
 
 #include "latfrac/criteria/criterion.h"
 #include "criterion_calls.h"
+#include "sampling.h"
 #include "latfrac/base/error.h"
 
 using namespace latfrac;
@@ -30,29 +31,6 @@ VoigtStress stress_at(const VoigtStress& s0, const VoigtStress& s1, double l) {
   VoigtStress s;
   for (int i = 0; i < 6; ++i) s[i] = s0[i] + l * s1[i];
   return s;
-}
-
-// The first l in (from, to] with f(l) >= 1 by sampling, then bisection to rounding. Every f
-// is convex along an affine path, so {f >= 1} after 'from' is one interval and the first
-// sample inside it brackets its start.
-template <class F>
-double sampled_crossing(F f, double from, double to) {
-  if (f(from) >= 1) return from;
-  constexpr int samples = 2000;
-  double lo = from;
-  for (int i = 1; i <= samples; ++i) {
-    double hi = i == samples ? to : from + (to - from) * i / samples;
-    if (f(hi) < 1) {
-      lo = hi;
-      continue;
-    }
-    for (;;) {
-      const double mid = 0.5 * (lo + hi);
-      if (mid <= lo || mid >= hi) return hi;
-      (f(mid) >= 1 ? hi : lo) = mid;
-    }
-  }
-  return inf;
 }
 
 struct Outcomes {

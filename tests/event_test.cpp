@@ -188,14 +188,7 @@ TEST_CASE("On an affine scene the CVODE route and the closed-form route agree", 
   const RunResult closed_form = run_scene(scene, {});
   // The same scene through the general route: CVODE with root finding, KINSOL corrections.
   Model model = build_model(scene);
-  prepare_supports(model, scene.source_path);
-  EquilibriumSolver solver(model, scene.solver);
-  ProgressLine progress(false);
-  RunResult integrated;
-  FractureRun fracture(model, make_criterion(*scene.strength, 2), scene.strength->bond_stress,
-                       schedule_of(scene), scene.solver, solver, progress, integrated);
-  fracture.use_integrated_path(true);
-  fracture.run();
+  const RunResult integrated = testing::run_model(model, scene, /*integrated=*/true);
   REQUIRE(closed_form.events.size() > 3);
   REQUIRE(integrated.events.size() == closed_form.events.size());
   for (std::size_t k = 0; k < closed_form.events.size(); ++k) {

@@ -46,8 +46,14 @@ struct Balance {
   std::int64_t held_nodes = 0;  // nodes of parts without support along some axis
 };
 
-inline Balance balance(const FinalState& state) {
-  const Model& model = state.model;
+// The parts connected through intact bonds: each node's part, and per part whether one of
+// its nodes has a prescribed dof along each axis.
+struct SupportedParts {
+  std::vector<std::int64_t> part;               // per node
+  std::vector<std::array<bool, 3>> supported;  // per part and axis
+};
+
+inline SupportedParts supported_parts(const Model& model) {
   const Lattice& lattice = model.lattice;
   const int dim = model.dim();
   const std::int64_t nodes = lattice.node_count();
@@ -57,26 +63,34 @@ inline Balance balance(const FinalState& state) {
     neighbours[lattice.bonds[b].i].push_back(lattice.bonds[b].j);
     neighbours[lattice.bonds[b].j].push_back(lattice.bonds[b].i);
   }
-  std::vector<std::int64_t> part(nodes, -1);
-  std::vector<std::array<bool, 3>> supported;
+  SupportedParts parts{std::vector<std::int64_t>(nodes, -1), {}};
   for (std::int64_t start = 0; start < nodes; ++start) {
-    if (part[start] >= 0) continue;
-    const std::int64_t id = static_cast<std::int64_t>(supported.size());
-    supported.push_back({false, false, false});
+    if (parts.part[start] >= 0) continue;
+    const std::int64_t id = static_cast<std::int64_t>(parts.supported.size());
+    parts.supported.push_back({false, false, false});
     std::vector<std::int64_t> queue{start};
-    part[start] = id;
+    parts.part[start] = id;
     for (std::size_t k = 0; k < queue.size(); ++k) {
       const std::int64_t n = queue[k];
       for (int c = 0; c < dim; ++c)
-        supported[id][c] = supported[id][c] || model.dofs().free_index[n * dim + c] < 0;
+        parts.supported[id][c] =
+            parts.supported[id][c] || model.dofs().free_index[n * dim + c] < 0;
       for (std::int64_t next : neighbours[n]) {
-        if (part[next] < 0) {
-          part[next] = id;
+        if (parts.part[next] < 0) {
+          parts.part[next] = id;
           queue.push_back(next);
         }
       }
     }
   }
+  return parts;
+}
+
+inline Balance balance(const FinalState& state) {
+  const Model& model = state.model;
+  const int dim = model.dim();
+  const std::int64_t nodes = model.lattice.node_count();
+  const auto [part, supported] = supported_parts(model);
   const Vector force = model.internal_force(state.displacement) - model.external_force;
   const Vector unloaded = model.residual(Vector::Zero(model.dofs().free_count), state.lambda);
   const double load = max_abs(unloaded);

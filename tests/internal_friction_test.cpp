@@ -11,11 +11,8 @@
 #include "criterion_calls.h"
 #include "latfrac/base/error.h"
 #include "latfrac/criteria/crossing.h"
-#include "latfrac/base/progress.h"
-#include "latfrac/fracture/fracture_run.h"
-#include "latfrac/fracture/initial_supports.h"
 #include "latfrac/scene/run.h"
-#include "latfrac/solvers/equilibrium.h"
+#include "sampling.h"
 #include "scenes.h"
 
 using namespace latfrac;
@@ -27,44 +24,14 @@ constexpr double MPa = 1e6;
 constexpr double inf = std::numeric_limits<double>::infinity();
 
 // The Mohr-Coulomb shear part by brute force: the largest (tau + mu sigma_n) / tau0 over
-// planes sampled densely in the x-z plane (2-D) or over the sphere (3-D).
+// sampled planes.
 double sampled_coulomb(const VoigtStress& stress, int dim, double tau0, double mu) {
   double best = -inf;
-  const int steps = 720;
-  for (int i = 0; i < steps; ++i) {
-    const double theta = std::numbers::pi * i / steps;
-    for (int j = 0; j < (dim == 2 ? 1 : steps); ++j) {
-      const double phi = 2 * std::numbers::pi * j / steps;
-      const Eigen::Vector3d n = dim == 2 ? Eigen::Vector3d(std::cos(theta), 0, std::sin(theta))
-                                         : Eigen::Vector3d(std::sin(theta) * std::cos(phi),
-                                                           std::sin(theta) * std::sin(phi),
-                                                           std::cos(theta));
-      const ResolvedStress r = resolve_on(stress, n);
-      best = std::max(best, (r.shear.norm() + mu * r.normal) / tau0);
-    }
-  }
+  for_each_sampled_plane(dim, [&](const Eigen::Vector3d& n) {
+    const ResolvedStress r = resolve_on(stress, n);
+    best = std::max(best, (r.shear.norm() + mu * r.normal) / tau0);
+  });
   return best;
-}
-
-// The first l in [from, to] with f(l) >= 1 by 4000 samples and bisection; inf when none.
-template <class F>
-double sampled_crossing(F f, double from, double to) {
-  if (f(from) >= 1) return from;
-  const int samples = 4000;
-  double lo = from;
-  for (int i = 1; i <= samples; ++i) {
-    double hi = i == samples ? to : from + (to - from) * i / samples;
-    if (f(hi) < 1) {
-      lo = hi;
-      continue;
-    }
-    for (;;) {
-      const double mid = 0.5 * (lo + hi);
-      if (mid <= lo || mid >= hi) return hi;
-      (f(mid) >= 1 ? hi : lo) = mid;
-    }
-  }
-  return inf;
 }
 
 }  // namespace
@@ -180,7 +147,7 @@ TEST_CASE("crossings with internal friction: a hand-solved path and random paths
             .value;
       };
       const double exact = first_crossing(c, p, sigma0, tau0, from, to, mu);
-      const double sampled = sampled_crossing(f, from, to);
+      const double sampled = sampled_crossing(f, from, to, 4000);
       INFO("criterion " << static_cast<int>(c) << " trial " << trial);
       if (sampled == inf) {
         CHECK(exact == inf);
@@ -253,13 +220,7 @@ TEST_CASE("internal friction: the first break of a lattice in uniaxial-strain co
         m.bond_tau0[b] *= 100;
       }
     }
-    prepare_supports(m, sc.source_path);
-    EquilibriumSolver solver(m, sc.solver);
-    ProgressLine progress(false);
-    RunResult result;
-    FractureRun fracture(m, make_criterion(*sc.strength, 2), sc.strength->bond_stress,
-                         schedule_of(sc), sc.solver, solver, progress, result);
-    fracture.run();
+    const RunResult result = testing::run_model(m, sc);
     REQUIRE(!result.events.empty());
     return result.events.front();
   };

@@ -66,32 +66,7 @@ HeldBalance held_balance(const Scene& scene, const KeptRun& run) {
   const FinalState state = final_state(scene, run.result);
   const Model& model = state.model;
   const int dim = model.dim();
-  const std::int64_t nodes = model.lattice.node_count();
-  std::vector<std::vector<std::int64_t>> neighbours(nodes);
-  for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
-    if (!model.intact(b)) continue;
-    neighbours[model.lattice.bonds[b].i].push_back(model.lattice.bonds[b].j);
-    neighbours[model.lattice.bonds[b].j].push_back(model.lattice.bonds[b].i);
-  }
-  std::vector<std::int64_t> part(nodes, -1);
-  std::vector<std::array<bool, 3>> supported;
-  for (std::int64_t start = 0; start < nodes; ++start) {
-    if (part[start] >= 0) continue;
-    const std::int64_t id = static_cast<std::int64_t>(supported.size());
-    supported.push_back({false, false, false});
-    std::vector<std::int64_t> queue{start};
-    part[start] = id;
-    for (std::size_t k = 0; k < queue.size(); ++k) {
-      for (int c = 0; c < dim; ++c)
-        supported[id][c] = supported[id][c] || model.dofs().free_index[queue[k] * dim + c] < 0;
-      for (std::int64_t next : neighbours[queue[k]]) {
-        if (part[next] < 0) {
-          part[next] = id;
-          queue.push_back(next);
-        }
-      }
-    }
-  }
+  const auto [part, supported] = supported_parts(model);
   const Vector force = model.internal_force(state.displacement) - model.external_force;
   const double load = max_abs(model.residual(Vector::Zero(model.dofs().free_count), state.lambda));
   HeldBalance result;

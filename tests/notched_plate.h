@@ -50,6 +50,16 @@ inline Scene notched_plate(LatticeKind kind, double notch_degrees, std::uint64_t
   return scene;
 }
 
+// The direction of largest spread of at least two points (unit, either sign).
+inline Eigen::Vector2d principal_axis(const std::vector<Eigen::Vector2d>& points) {
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (const auto& p : points) scatter += (p - mean) * (p - mean).transpose();
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(scatter).eigenvectors().col(1);
+}
+
 struct CrackDirection {
   int bonds = 0;       // broken bonds below the notch's tip
   double degrees = 0;  // from the vertical, positive leaning like the notch (towards -x up)
@@ -70,13 +80,7 @@ inline CrackDirection crack_direction(const RunResult& result) {
   CrackDirection crack;
   crack.bonds = static_cast<int>(points.size());
   if (points.size() < 2) return crack;
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  for (const auto& p : points) mean += p;
-  mean /= static_cast<double>(points.size());
-  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (const auto& p : points) scatter += (p - mean) * (p - mean).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(scatter);
-  Eigen::Vector2d along = eigen.eigenvectors().col(1);  // the largest spread
+  Eigen::Vector2d along = principal_axis(points);
   if (along.y() < 0) along = -along;                     // pointing up
   crack.degrees = std::atan2(-along.x(), along.y()) * 180 / std::numbers::pi;
   return crack;
@@ -131,13 +135,7 @@ inline CrackDirection rotated_load_crack(LatticeKind kind, double load_degrees,
   CrackDirection crack;
   crack.bonds = static_cast<int>(points.size());
   if (points.size() < 2) return crack;
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  for (const auto& p : points) mean += p;
-  mean /= static_cast<double>(points.size());
-  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
-  for (const auto& p : points) scatter += (p - mean) * (p - mean).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(scatter);
-  const Eigen::Vector2d axis = eigen.eigenvectors().col(1);
+  const Eigen::Vector2d axis = principal_axis(points);
   // The signed angle from the slit's direction to the axis, folded into (-90, 90].
   double degrees = (std::atan2(axis.y(), axis.x()) - std::atan2(along.z(), along.x())) * 180 /
                    std::numbers::pi;

@@ -1,7 +1,11 @@
 // Small scenes built in code for the tests (the problem-file reader has its own tests).
 #pragma once
 
+#include "latfrac/base/progress.h"
+#include "latfrac/fracture/fracture_run.h"
+#include "latfrac/fracture/initial_supports.h"
 #include "latfrac/scene/model_builder.h"
+#include "latfrac/solvers/equilibrium.h"
 
 namespace latfrac::testing {
 
@@ -27,6 +31,22 @@ inline Strength strength_of(Criterion criterion, double sigma0, double friction_
   strength.sigma0 = sigma0;
   strength.friction_angle = friction_angle;
   return strength;
+}
+
+// Runs the fracture of a model built from `scene` (and changed by the caller, which is what
+// run_scene cannot do), holding what the pre-cuts cut loose first. `integrated`: follow
+// the paths with CVODE and KINSOL even for a linear law.
+inline RunResult run_model(Model& model, const Scene& scene, bool integrated = false) {
+  prepare_supports(model, scene.source_path);
+  EquilibriumSolver solver(model, scene.solver);
+  ProgressLine progress(false);
+  RunResult result;
+  FractureRun fracture(model, make_criterion(*scene.strength, scene.lattice.dim),
+                       scene.strength->bond_stress, schedule_of(scene), scene.solver, solver,
+                       progress, result);
+  fracture.use_integrated_path(integrated);
+  fracture.run();
+  return result;
 }
 
 }  // namespace latfrac::testing

@@ -97,6 +97,18 @@ cholmod_sparse view_of(StiffnessMatrix& matrix) {
   return a;
 }
 
+// A CHOLMOD view of `columns` dense columns of `rows` doubles stored one after another.
+cholmod_dense dense_view(double* x, std::int64_t rows, int columns = 1) {
+  cholmod_dense b{};
+  b.nrow = b.d = static_cast<std::size_t>(rows);
+  b.ncol = static_cast<std::size_t>(columns);
+  b.nzmax = b.nrow * b.ncol;
+  b.x = x;
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  return b;
+}
+
 }  // namespace
 
 CholeskyFactor::CholeskyFactor(Ordering ordering) : state_(std::make_unique<State>()) {
@@ -255,12 +267,7 @@ CholeskyFactor::NullMode CholeskyFactor::null_mode(StiffnessMatrix& matrix) {
   const std::int64_t n = static_cast<std::int64_t>(f.n);
   std::vector<double> unit(n, 0.0);
   unit[weakest_.position] = 1.0;
-  cholmod_dense b{};
-  b.nrow = b.d = b.nzmax = static_cast<std::size_t>(n);
-  b.ncol = 1;
-  b.x = unit.data();
-  b.xtype = CHOLMOD_REAL;
-  b.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense b = dense_view(unit.data(), n);
   const int ok = cholmod_l_solve2(CHOLMOD_Lt, state_->factor, &b, nullptr, &state_->solution,
                                   nullptr, &state_->work_y, &state_->work_e, &c);
   check(c, ok, "cholmod_l_solve2");
@@ -292,14 +299,7 @@ CholeskyFactor::NullMode CholeskyFactor::null_mode(StiffnessMatrix& matrix) {
 void CholeskyFactor::solve(double* rhs, std::int64_t rows, int columns) {
   if (!factorized_) throw Error("CholeskyFactor::solve called before a successful factorization");
   cholmod_common& c = state_->common;
-  cholmod_dense b{};
-  b.nrow = static_cast<std::size_t>(rows);
-  b.ncol = static_cast<std::size_t>(columns);
-  b.nzmax = b.nrow * b.ncol;
-  b.d = b.nrow;
-  b.x = rhs;
-  b.xtype = CHOLMOD_REAL;
-  b.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense b = dense_view(rhs, rows, columns);
   const int ok = cholmod_l_solve2(CHOLMOD_A, state_->factor, &b, nullptr, &state_->solution,
                                   nullptr, &state_->work_y, &state_->work_e, &c);
   check(c, ok, "cholmod_l_solve2");
@@ -424,12 +424,7 @@ bool CholeskyFactor::solve_sparse(const Column& b, double* x) {
   // D L' z = y over every column (the solution is dense): CHOLMOD's own simplicial solve,
   // which treats runs of columns with one pattern together. Then x = P' z.
   cholmod_common& c = state_->common;
-  cholmod_dense forward{};
-  forward.nrow = forward.d = forward.nzmax = static_cast<std::size_t>(n);
-  forward.ncol = 1;
-  forward.x = y.data();
-  forward.xtype = CHOLMOD_REAL;
-  forward.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense forward = dense_view(y.data(), n);
   const int ok = cholmod_l_solve2(CHOLMOD_DLt, state_->factor, &forward, nullptr,
                                   &state_->solution, nullptr, &state_->work_y, &state_->work_e, &c);
   check(c, ok, "cholmod_l_solve2");
