@@ -232,6 +232,18 @@ TEST_CASE("a value out of range says what is allowed", "[io]") {
              Contains("name: \"my run\" cannot name output files; allowed: letters, digits"));
 }
 
+TEST_CASE("contact.friction: a non-negative mu on an enabled contact", "[io]") {
+  CHECK(parse_problem(minimal + "[contact]\nfriction = 0.6\n", "t.toml", {}).contact->friction ==
+        0.6);
+  CHECK(parse_problem(minimal + "[contact]\n", "t.toml", {}).contact->friction == 0);
+  CHECK_THAT(error_of(minimal + "[contact]\nfriction = -0.1\n"),
+             Contains("contact.friction: -0.1 is out of range"));
+  CHECK_THAT(error_of(minimal + "[contact]\nfriction = nan\n"),
+             Contains("contact.friction: must be finite"));
+  CHECK_THAT(error_of(minimal + "[contact]\nenabled = false\nfriction = 0.6\n"),
+             Contains("contact.friction: has no effect: contact.enabled is false"));
+}
+
 TEST_CASE("nan and inf are rejected", "[io]") {
   CHECK(error_of(with(minimal, "spacing = 500", "spacing = nan")) ==
         "t.toml:4: lattice.spacing: must be finite, got nan; allowed: spacing > 0 (m)");

@@ -113,17 +113,38 @@ void EquilibriumState::hold(const std::vector<FragmentDetector::LoosePart>& part
   if (relaxation_) state_ = model_.free_part(before);
 }
 
+void EquilibriumState::commit_at(const Vector& displacement) {
+  if (!model_.has_friction()) return;
+  const InteractionLaw& law = *model_.contact_law();
+  for (std::int64_t b = 0; b < model_.lattice.bond_count(); ++b) {
+    if (!model_.contact_capable(b)) continue;
+    solver_.set_contact_memory(
+        b, law.advanced(model_.springs(b), model_.state(b), model_.bond_displacement(displacement, b)));
+  }
+}
+
+void EquilibriumState::commit_contacts(double lambda) { commit_at(displacement(lambda)); }
+
 void EquilibriumState::change_pairs(const std::vector<PairChange>& changes, double lambda,
                                     const Vector& before) {
+  commit_at(before);
   std::vector<std::int64_t> disconnected;
   for (const PairChange& change : changes) {
-    const bool connected = connects(model_.state(change.bond));
+    const PairState state = model_.state(change.bond);
+    if (model_.has_friction() && model_.can_touch(change.bond)) {
+      solver_.set_contact_memory(
+          change.bond,
+          model_.contact_law()->entered(model_.springs(change.bond), state, change.state,
+                                        model_.bond_displacement(before, change.bond),
+                                        change.direction));
+    }
     solver_.set_pair_state(change.bond, change.state);
-    if (connected && !connects(change.state)) disconnected.push_back(change.bond);
+    if (connects(state) && !connects(change.state)) disconnected.push_back(change.bond);
   }
   for (std::int64_t bond : disconnected)
     hold(fragments_detector_.unsupported_after_break(model_, bond), lambda, before);
   resolve(lambda);
+  if (model_.has_friction()) commit_at(model_.full_displacement(state_, lambda));
 }
 
 void EquilibriumState::adopt(const Vector& free_state, double lambda) {

@@ -65,6 +65,12 @@ void FractureRun::save_checkpoint(double lambda, std::int64_t next_step,
   checkpoint.cascade = cascade;
   for (PairState state : model_.pair_states())
     checkpoint.pair_states.push_back(static_cast<std::uint8_t>(state));
+  for (const ContactMemory& m : model_.contact_memory()) {
+    checkpoint.contact_memory.insert(checkpoint.contact_memory.end(),
+                                     {m.anchor.x(), m.anchor.y(), m.anchor.z(), m.slip_direction.x(),
+                                      m.slip_direction.y(), m.slip_direction.z(), m.normal, m.slip,
+                                      m.work});
+  }
   checkpoint.free_index = model_.dofs().free_index;
   checkpoint.prescribed_base = model_.dofs().prescribed_base;
   checkpoint.prescribed_rate = model_.dofs().prescribed_rate;
@@ -100,6 +106,8 @@ void FractureRun::between_events(double lambda, std::int64_t next_step,
 
 void FractureRun::run() {
   if (!resumed_) start();
+  if (model_.has_friction() && (integrated_ || !equilibrium_.affine()))
+    throw Error("friction needs the exact affine path (small kinematics, the direct solver)");
   if (schedule_.stepping.method == SteppingMethod::fixed) {
     fixed_steps();
   } else if (integrated_) {
@@ -122,6 +130,19 @@ void FractureRun::start() {
 void FractureRun::finish() {
   result_.fragments.insert(result_.fragments.end(), equilibrium_.fragments().begin(),
                            equilibrium_.fragments().end());
+  if (model_.has_friction()) {
+    equilibrium_.commit_contacts(schedule_.total);
+    const auto& memory = model_.contact_memory();
+    result_.contact_slip.resize(memory.size());
+    result_.friction_work.resize(memory.size());
+    result_.summary.contact_slip = result_.summary.friction_work = 0;
+    for (std::size_t b = 0; b < memory.size(); ++b) {
+      result_.contact_slip[b] = memory[b].slip;
+      result_.friction_work[b] = memory[b].work;
+      result_.summary.contact_slip += memory[b].slip;
+      result_.summary.friction_work += memory[b].work;
+    }
+  }
 }
 
 void FractureRun::take_snapshot(double lambda) {

@@ -7,8 +7,14 @@ namespace latfrac {
 
 std::string closed_pairs(const Model& model) {
   std::string closed(model.lattice.bond_count(), '\0');
-  for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b)
-    closed[b] = model.state(b) == PairState::closed;
+  for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
+    const PairState state = model.state(b);
+    closed[b] = state == PairState::closed ? 1 : 0;
+    if (state == PairState::slip) {
+      const Vec3 t = FrictionalContactLaw::tangent_of(model.lattice.bond_direction[b]);
+      closed[b] = model.contact_memory()[b].slip_direction.dot(t) >= 0 ? 2 : 3;
+    }
+  }
   return closed;
 }
 

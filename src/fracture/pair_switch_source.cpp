@@ -1,6 +1,7 @@
 // The next contact switch on an affine path, and taking it.
 #include "latfrac/fracture/pair_switch_source.h"
 
+
 namespace latfrac {
 
 // The first switch after `from`, lowest bond id on ties.
@@ -16,16 +17,22 @@ double PairSwitchSource::propose(const AffinePath& path, double from, double to)
     if (!model.contact_capable(b)) continue;
     const PairSwitch change = model.law_of(b)->next_switch(
         model.springs(b), model.state(b), model.bond_displacement(full.at_zero, b),
-        sign * model.bond_displacement(full.per_lambda, b), s_from, s_to, switch_at_start_);
+        sign * model.bond_displacement(full.per_lambda, b), s_from, s_to,
+        switch_at_start_ && !unstable_.contains(b));
     if (change.found() && change.s < first) {
       first = change.s;
-      proposed_ = {b, change.to};
+      proposed_ = {b, change.to, change.direction};
     }
   }
   return proposed_.bond >= 0 ? sign * first : none;
 }
 
 void PairSwitchSource::reached(double lambda) {
+  if (!unstable_.empty() && !(std::abs(lambda - unstable_lambda_) <= window(unstable_lambda_)))
+    unstable_.clear();
+  std::erase_if(stuck_at_, [&](const auto& entry) {
+    return !(std::abs(lambda - entry.second) <= window(entry.second));
+  });
   if (lambda == sets_lambda_) return;
   sets_at_lambda_.clear();
   sets_lambda_ = lambda;
@@ -33,6 +40,17 @@ void PairSwitchSource::reached(double lambda) {
 }
 
 void PairSwitchSource::take(double lambda) {
+  const PairState from = equilibrium_.model().state(proposed_.bond);
+  if (from == PairState::slip && proposed_.state == PairState::closed) {
+    stuck_at_[proposed_.bond] = lambda;
+  } else if (from == PairState::closed && proposed_.state == PairState::slip) {
+    const auto stuck = stuck_at_.find(proposed_.bond);
+    if (stuck != stuck_at_.end() && std::abs(lambda - stuck->second) <= window(stuck->second)) {
+      unstable_.insert(proposed_.bond);
+      unstable_lambda_ = lambda;
+      settling_.count_cycle();
+    }
+  }
   equilibrium_.change_pairs({proposed_}, lambda, equilibrium_.displacement(lambda));
   settling_.settle(lambda);
   breaking_.cascade(lambda);

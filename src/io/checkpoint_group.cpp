@@ -49,6 +49,10 @@ void write_checkpoint_group(hid_t file, const RunCheckpoint& c) {
   hdf5::write_string_attribute(file, group, "problem_path", c.problem_path);
   hdf5::write_string_attribute(file, group, "overrides", joined_lines(c.overrides));
   hdf5::write_dataset(file, group + "/pair_state", c.pair_states, {c.pair_states.size()});
+  if (!c.contact_memory.empty()) {
+    hdf5::write_dataset(file, group + "/contact_memory", c.contact_memory,
+                        {c.pair_states.size(), RunCheckpoint::memory_values});
+  }
   hdf5::write_dataset(file, group + "/free_index", c.free_index, {c.free_index.size()});
   hdf5::write_dataset(file, group + "/prescribed_base", c.prescribed_base,
                       {c.prescribed_base.size()});
@@ -110,6 +114,10 @@ RunCheckpoint read_checkpoint_group(hid_t file) {
   const hsize_t bonds = length_of(file, group + "/pair_state");
   const hsize_t dofs = length_of(file, group + "/free_index");
   c.pair_states = hdf5::read_dataset<std::uint8_t>(file, group + "/pair_state", {bonds});
+  if (hdf5::exists(file, group + "/contact_memory")) {
+    c.contact_memory = hdf5::read_dataset<double>(file, group + "/contact_memory",
+                                                  {bonds, RunCheckpoint::memory_values});
+  }
   c.free_index = hdf5::read_dataset<std::int64_t>(file, group + "/free_index", {dofs});
   c.prescribed_base = hdf5::read_dataset<double>(file, group + "/prescribed_base", {dofs});
   c.prescribed_rate = hdf5::read_dataset<double>(file, group + "/prescribed_rate", {dofs});

@@ -172,6 +172,10 @@ std::string describe(const Scene& scene) {
   if (scene.contact) {
     out.section("contact");
     out.entry("enabled", "true");
+    out.entry("friction", scene.contact->friction,
+              scene.contact->friction > 0
+                  ? "(Coulomb's mu on closed contacts: stick, or slip at mu |Fn|)"
+                  : "(frictionless contacts)");
   } else {
     out.off("contact");
   }

@@ -253,9 +253,14 @@ void read_effects(const Section& top, Scene& scene) {
   if (const auto s = top.section("gravity", {"g"})) {
     scene.gravity = Gravity{s->number("g", non_negative("m/s^2"), 9.81)};
   }
-  if (const auto s = top.section("contact", {"enabled"});
-      s && s->boolean("enabled").value_or(true)) {
-    scene.contact = Contact{};
+  if (const auto s = top.section("contact", {"enabled", "friction"})) {
+    const double friction = s->number("friction", non_negative(), 0.0);
+    if (s->boolean("enabled").value_or(true)) {
+      scene.contact = Contact{true, friction};
+    } else if (friction > 0) {
+      s->fail("friction", "has no effect: contact.enabled is false (friction acts on closed contacts)",
+              "allowed: contact.enabled = true, or remove friction");
+    }
   }
   if (const auto s = top.section("large_kinematics", {"enabled"})) {
     scene.large_kinematics = s->boolean("enabled").value_or(true);

@@ -177,6 +177,17 @@ void write_summary(hid_t file, const RunSummary& summary) {
   hdf5::write_attribute(file, group, "final_lambda", summary.final_lambda);
   hdf5::write_attribute(file, group, "wall_seconds", summary.wall_seconds);
   hdf5::write_attribute(file, group, "complete", static_cast<std::uint8_t>(summary.complete));
+  hdf5::write_attribute(file, group, "contact_slip", summary.contact_slip);
+  hdf5::write_attribute(file, group, "friction_work", summary.friction_work);
+}
+
+// With friction, per bond: the slip of its contact and the work its friction dissipated.
+void write_friction(hid_t file, const RunResult& result) {
+  if (result.contact_slip.empty()) return;
+  hdf5::create_group(file, "/friction");
+  const Shape shape{result.contact_slip.size()};
+  hdf5::write_dataset(file, "/friction/slip", result.contact_slip, shape);
+  hdf5::write_dataset(file, "/friction/work", result.friction_work, shape);
 }
 
 // A generous guess of the file's size, so that the in-memory file grows once.
@@ -235,6 +246,7 @@ void write_hdf5(const std::string& file_name, const RunResult& result,
     write_fragments(file.get(), result.fragments);
     write_snapshots(file.get(), result);
     write_summary(file.get(), result.summary);
+    write_friction(file.get(), result);
     if (checkpoint) write_checkpoint_group(file.get(), *checkpoint);
     hdf5::check(H5Fflush(file.get(), H5F_SCOPE_LOCAL), "H5Fflush", quoted);
     const ssize_t size = H5Fget_file_image(file.get(), nullptr, 0);
@@ -335,6 +347,10 @@ RunSummary read_summary(hid_t file) {
   summary.relaxation_sweeps = optional_count("relaxation_sweeps");
   summary.relaxation_unconverged = optional_count("relaxation_unconverged");
   summary.final_lambda = hdf5::read_attribute<double>(file, group, "final_lambda");
+  if (H5Aexists_by_name(file, group.c_str(), "friction_work", H5P_DEFAULT) > 0) {
+    summary.contact_slip = hdf5::read_attribute<double>(file, group, "contact_slip");
+    summary.friction_work = hdf5::read_attribute<double>(file, group, "friction_work");
+  }
   summary.wall_seconds = hdf5::read_attribute<double>(file, group, "wall_seconds");
   // Files written before runs were written as they went are complete.
   summary.complete = H5Aexists_by_name(file, group.c_str(), "complete", H5P_DEFAULT) <= 0 ||
@@ -366,6 +382,10 @@ RunResult read_contents(hid_t file) {
   result.fragments = read_fragments(file);
   result.snapshots = read_snapshots(file, nodes, bonds);
   result.summary = read_summary(file);
+  if (hdf5::exists(file, "/friction/slip")) {
+    result.contact_slip = hdf5::read_dataset<double>(file, "/friction/slip", {bonds});
+    result.friction_work = hdf5::read_dataset<double>(file, "/friction/work", {bonds});
+  }
   return result;
 }
 

@@ -79,9 +79,11 @@ Vector Model::reactions(const Vector& displacement) const {
 }
 
 void ModelEditor::set_laws(std::unique_ptr<BondLaw> bond_law,
-                           std::unique_ptr<ContactLaw> contact_law) {
+                           std::unique_ptr<InteractionLaw> contact_law) {
   model_.bond_law_ = std::move(bond_law);
   model_.contact_law_ = std::move(contact_law);
+  model_.memory_.clear();
+  if (model_.has_friction()) model_.memory_.resize(model_.lattice.bond_count());
 }
 
 void ModelEditor::reset_states() {

@@ -135,8 +135,13 @@ Model build_model(const Scene& scene, const FailureCriterion* criterion) {
   } else {
     bond_law = std::make_unique<SmallKinematics>(dim);
   }
-  editor.set_laws(std::move(bond_law),
-                  scene.contact ? std::make_unique<ContactLaw>(lattice.spacing) : nullptr);
+  std::unique_ptr<InteractionLaw> contact_law;
+  if (scene.contact && scene.contact->friction > 0) {
+    contact_law = std::make_unique<FrictionalContactLaw>(lattice.spacing, scene.contact->friction);
+  } else if (scene.contact) {
+    contact_law = std::make_unique<ContactLaw>(lattice.spacing);
+  }
+  editor.set_laws(std::move(bond_law), std::move(contact_law));
   return model;
 }
 

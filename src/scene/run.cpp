@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <iomanip>
 #include <sstream>
 
 #include "latfrac/fracture/fracture_run.h"
@@ -82,6 +83,16 @@ void restore_model(Model& model, const RunCheckpoint& checkpoint, const std::str
   ModelEditor editor(model);
   for (std::size_t b = 0; b < bonds; ++b)
     editor.set_state(static_cast<std::int64_t>(b), static_cast<PairState>(states[b]));
+  const std::size_t values = RunCheckpoint::memory_values;
+  if (model.has_friction() != !checkpoint.contact_memory.empty() ||
+      (model.has_friction() && checkpoint.contact_memory.size() != bonds * values))
+    throw InputError(source + ": the checkpoint's contact memory does not fit this problem's " +
+                     "friction");
+  for (std::size_t b = 0; b < bonds && model.has_friction(); ++b) {
+    const double* v = &checkpoint.contact_memory[b * values];
+    editor.set_memory(static_cast<std::int64_t>(b),
+                      {Vec3(v[0], v[1], v[2]), Vec3(v[3], v[4], v[5]), v[6], v[7], v[8]});
+  }
   DofMap map;
   map.dim = model.dim();
   map.free_index = checkpoint.free_index;
@@ -99,6 +110,14 @@ std::vector<std::string> unsupported_effects(const Scene& scene) {
     missing.push_back(
         "[contact] on an elastic scene (contacts are settled by the fracture run: add a "
         "[strength] section, with a strength that cannot be reached if nothing should break)");
+  }
+  if (scene.contact && scene.contact->friction > 0) {
+    if (scene.lattice.dim == 3)
+      missing.push_back("contact.friction in 3-D (friction is 2-D in this version; docs/model.md)");
+    if (scene.large_kinematics)
+      missing.push_back("contact.friction with large_kinematics (friction needs affine paths)");
+    if (scene.solver.method == EquilibriumMethod::relaxation)
+      missing.push_back("contact.friction with solver.method = \"relaxation\"");
   }
   if (scene.solver.method == EquilibriumMethod::relaxation && !scene.strength) {
     missing.push_back(
@@ -192,6 +211,14 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   return result;
 }
 
+namespace {
+std::string format_number(double value) {
+  std::ostringstream text;
+  text << std::setprecision(6) << value;
+  return text.str();
+}
+}  // namespace
+
 std::string summary_text(const RunResult& result) {
   std::ostringstream text;
   const RunSummary& s = result.summary;
@@ -208,6 +235,11 @@ std::string summary_text(const RunResult& result) {
                                      ", solves stopped by the sweep cap " +
                                      std::to_string(s.relaxation_unconverged) + "\n"
                                : std::string())
+       << (result.contact_slip.empty()
+               ? std::string()
+               : "  friction: contact slip " + format_number(s.contact_slip) +
+                     " m in all, work dissipated " + format_number(s.friction_work) +
+                     (result.scene.dim == 2 ? " J per metre\n" : " J\n"))
        << "  solves " << s.solves << ", factorizations " << s.factorizations << ", factor updates "
        << s.factor_updates << "\n"
        << "  wall time " << s.wall_seconds << " s\n";

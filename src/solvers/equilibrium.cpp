@@ -13,14 +13,32 @@
 #include <string>
 
 #include "latfrac/base/error.h"
+#include "unsymmetric.h"
 
 namespace latfrac {
 
+std::vector<std::int64_t> EquilibriumSolver::anchored_pairs() const {
+  std::vector<std::int64_t> pairs;
+  if (!model_.has_friction()) return pairs;
+  for (std::int64_t b = 0; b < model_.lattice.bond_count(); ++b) {
+    if (!on_boundary_[b] && model_.state(b) == PairState::closed && model_.contact_capable(b))
+      pairs.push_back(b);
+  }
+  return pairs;
+}
+
+// With friction, a stick contact off the boundary carries -ks a at zero displacement: its
+// anchor is a load like gravity.
 void EquilibriumSolver::update_loads() {
   if (loads_current_) return;
   const Vector zero = Vector::Zero(model_.dofs().free_count);
-  const Vector at0 = model_.internal_force(model_.full_displacement(zero, 0.0), boundary_bonds_);
-  const Vector at1 = model_.internal_force(model_.full_displacement(zero, 1.0), boundary_bonds_);
+  std::vector<std::int64_t> loaded = boundary_bonds_;
+  if (model_.has_friction()) {
+    const std::vector<std::int64_t> anchored = anchored_pairs();
+    loaded.insert(loaded.end(), anchored.begin(), anchored.end());
+  }
+  const Vector at0 = model_.internal_force(model_.full_displacement(zero, 0.0), loaded);
+  const Vector at1 = model_.internal_force(model_.full_displacement(zero, 1.0), loaded);
   load0_ = model_.free_part(model_.external_force - at0);
   load1_ = model_.free_part(at0 - at1);
   loads_current_ = true;
@@ -175,6 +193,13 @@ void EquilibriumSolver::append_on_bond(std::int64_t bond, const Vec3& v,
 // contact spring).
 void EquilibriumSolver::set_pair_state(std::int64_t bond, PairState state) {
   if (model_.state(bond) == state) return;
+  // A frictional contact's anchor and slip force are not in the rank-1 terms that the
+  // correction re-solve follows: the next solve is a full one, with fresh loads.
+  if (model_.has_friction() && model_.can_touch(bond)) {
+    last_solution_valid_ = false;
+    loads_current_ = false;
+  }
+  lu_current_ = false;
   if (factor_current_)
     changes_since_factorization_.push_back({bond, static_cast<std::uint8_t>(state)});
   const PairSprings springs = model_.springs(bond);
@@ -201,6 +226,19 @@ void EquilibriumSolver::set_pair_state(std::int64_t bond, PairState state) {
   }
   if (!removed.empty()) update_factor(bond, removed, /*downdate=*/true);
   if (!added.empty()) update_factor(bond, added, /*downdate=*/false);
+}
+
+void EquilibriumSolver::set_contact_memory(std::int64_t bond, const ContactMemory& memory) {
+  const ContactMemory& old = model_.contact_memory()[bond];
+  if (model_.state(bond) == PairState::closed && old.anchor != memory.anchor) {
+    loads_current_ = false;
+    last_solution_valid_ = false;
+  }
+  if (model_.state(bond) == PairState::slip && old.slip_direction != memory.slip_direction) {
+    last_solution_valid_ = false;
+    lu_current_ = false;
+  }
+  editor_.set_memory(bond, memory);
 }
 
 void EquilibriumSolver::hold(const std::vector<Hold>& holds, const Vector& displacement) {
@@ -352,8 +390,7 @@ Vector EquilibriumSolver::checked_solve(double lambda) {
     if (!factor_current_) refactorize(Vector::Zero(n), 0.0);
     update_loads();
     Vector u = load0_ + lambda * load1_;
-    if (n > 0) factor_.solve(u.data(), n, 1);
-    ++counters_.solves;
+    solve_coupled(u.data(), n, 1);
     const double residual = relative_residual(u, lambda);
     if (residual > options_.tolerance) {
       if (attempt == 0) {
@@ -371,6 +408,8 @@ Vector EquilibriumSolver::checked_solve(double lambda) {
 // With every dof prescribed (everything held) there is nothing to analyse or solve.
 void EquilibriumSolver::supports_changed() {
   last_solution_valid_ = false;  // the free dofs are others now
+  lu_current_ = false;
+  unsymmetric_.reset();
   stiffness_ = StiffnessMatrix(model_);
   if (model_.dofs().free_count > 0) analyse(inherited_order());
   reset_kinsol();
@@ -432,8 +471,7 @@ AffinePath EquilibriumSolver::affine_path() {
   Eigen::MatrixXd rhs(n, 2);
   rhs.col(0) = load0_;
   rhs.col(1) = load1_;
-  if (n > 0) factor_.solve(rhs.data(), n, 2);
-  ++counters_.solves;
+  solve_coupled(rhs.data(), n, 2);
   return {rhs.col(0), rhs.col(1)};
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "latfrac/solvers/equilibrium.h"
+#include "unsymmetric.h"
 #include "latfrac/base/error.h"
 #include "sundials_checks.h"
 
@@ -141,7 +142,7 @@ EquilibriumSolver::EquilibriumSolver(Model& model, const SolverOptions& options)
   if (model_.dofs().free_count > 0) analyse({});
 }
 
-EquilibriumSolver::~EquilibriumSolver() = default;
+EquilibriumSolver::~EquilibriumSolver() = default;  // Unsymmetric: unsymmetric.h
 
 // KINSOL's memory is sized for the free dofs: none without free dofs.
 void EquilibriumSolver::reset_kinsol() {

@@ -29,10 +29,11 @@
 
 namespace latfrac {
 
-// One pair's new state.
+// One pair's new state (into slip: the sense of sliding; zero: that of its force).
 struct PairChange {
   std::int64_t bond;
   PairState state;
+  Vec3 direction = Vec3::Zero();
 };
 
 class EquilibriumState {
@@ -56,7 +57,16 @@ class EquilibriumState {
   // every part that a pair which stopped connecting its nodes cut loose, at `before` (the
   // full displacement before the change; docs/robustness.md), and re-equilibrates at
   // lambda.
+  //
+  // With friction, every contact's memory is first carried along to `before` (its slip
+  // and work since the last commit), the changed pairs enter their new states there
+  // (FrictionalContactLaw::entered), and after the new equilibrium the memories are
+  // carried along again: each commit closes a stretch of affine path, or the jump at
+  // lambda that a change makes (whose work the trapezoidal rule in dn approximates).
   void change_pairs(const std::vector<PairChange>& changes, double lambda, const Vector& before);
+  // Carries every frictional contact's memory along to the equilibrium at lambda (the run
+  // calls it at its end).
+  void commit_contacts(double lambda);
   // Takes a free displacement computed elsewhere (the integrated path) as the state at lambda.
   void adopt(const Vector& free_state, double lambda);
 
@@ -77,6 +87,7 @@ class EquilibriumState {
  private:
   // Re-equilibrates at lambda after the model changed.
   void resolve(double lambda);
+  void commit_at(const Vector& displacement);
   // Runs `solve`; where a factorization finds no stiffness, holds that unknown and retries.
   template <typename Solve>
   auto holding_singular(double lambda, Solve solve);

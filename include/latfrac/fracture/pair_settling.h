@@ -18,8 +18,8 @@
 
 namespace latfrac {
 
-// Which pairs are closed contacts (one byte per bond, 1 if closed): the set the cycle
-// rule compares.
+// Which pairs are closed contacts (one byte per bond: 1 if closed, 2 or 3 if slipping
+// along the tangent or against it, 0 else): the set the cycle rule compares.
 std::string closed_pairs(const Model& model);
 
 class PairSettling {

@@ -7,9 +7,19 @@
 // cycle: this source then stops proposing switches at the lambda it stands at (the rest
 // are left to the settling and its own cycle rule, pair_settling.h) until the loop moves
 // on, and the cycle is counted (docs/robustness.md).
+//
+// With friction a contact can have no consistent state on a path: sticking, its force
+// leaves the cone at once; slipping, its slip runs backwards. It would then stick and slip
+// again ever closer together (a Zeno sequence: measured, steps of 2e-13 in lambda). A
+// contact that slips again within unstable_window of lambda after it stuck is taken as
+// unstable: it goes on slipping (its slip->stick switch is not proposed) until the loop
+// has moved on by more than the window, and the cycle is counted.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -27,6 +37,8 @@ class PairSwitchSource final : public EventSource {
   double propose(const AffinePath& path, double from, double to) override;
   void reached(double lambda) override;
   void take(double lambda) override;
+  // The window, relative to lambda (at least 1e-6 in absolute terms).
+  static constexpr double unstable_window = 1e-9;
   // The guard against cycling, for a checkpoint and a resume.
   SwitchGuard guard() const;
   void restore(const SwitchGuard& guard);
@@ -41,6 +53,14 @@ class PairSwitchSource final : public EventSource {
   std::set<std::string> sets_at_lambda_;
   double sets_lambda_ = EventSource::none;
   bool switch_at_start_ = true;
+  // Friction: where each contact last stuck, the contacts taken as unstable, and the
+  // lambda at which the last one was.
+  std::map<std::int64_t, double> stuck_at_;
+  std::set<std::int64_t> unstable_;
+  double unstable_lambda_ = EventSource::none;
+  static double window(double lambda) {
+    return unstable_window * std::max(std::abs(lambda), 1e-6);
+  }
 };
 
 }  // namespace latfrac

@@ -41,6 +41,10 @@ struct RunCheckpoint {
   // finishes it first (fixed steps: it belongs to step next_step). -1: between events.
   std::int64_t cascade = -1;
   std::vector<std::uint8_t> pair_states;  // per bond, PairState
+  // With friction, per bond, its contact's memory (ContactMemory): anchor (3), slip
+  // direction (3), normal, slip, work; empty without friction.
+  std::vector<double> contact_memory;
+  static constexpr int memory_values = 9;
   // The supports (mechanics/supports.h): per dof, free index or -1, base and rate.
   std::vector<std::int64_t> free_index;
   std::vector<double> prescribed_base, prescribed_rate;

@@ -68,6 +68,10 @@ struct RunCounters {
 
 struct RunSummary : RunCounters {
   double final_lambda = 0;  // the total; in an incomplete file, the lambda reached
+  // With friction: the slip of every contact summed (m) and the work friction dissipated
+  // (J; 2-D: J per metre), over the whole run.
+  double contact_slip = 0;
+  double friction_work = 0;
   double wall_seconds = 0;
   bool complete = true;  // false while the run is going on, or when it stopped
 };
@@ -81,6 +85,9 @@ struct RunResult {
   std::vector<BreakEvent> events;
   std::vector<FragmentEvent> fragments;
   std::vector<Snapshot> snapshots;
+  // With friction, per bond at the end of the run (empty without): the slip its contact
+  // accumulated (m) and the work its friction dissipated (J; 2-D: J per metre).
+  std::vector<double> contact_slip, friction_work;
   RunSummary summary;
 
   std::size_t node_count() const { return positions.size() / 3; }

@@ -23,13 +23,27 @@
 
 namespace latfrac {
 
+// What a frictional contact remembers between events (friction_law.h). Relative
+// displacements are du = u_j - u_i, m.
+struct ContactMemory {
+  // Stick: the tangential relative displacement at which the tangential spring is
+  // unstretched. Slip: that of the last commit (where the contact had slid to).
+  Vec3 anchor = Vec3::Zero();
+  Vec3 slip_direction = Vec3::Zero();  // slip: the unit sense in which node j slides
+  double normal = 0;  // dn = n0 . du at the last commit, m
+  double slip = 0;    // slip accumulated over the run, m
+  double work = 0;    // work dissipated by friction, J (2-D: J per metre)
+};
+
 // A pair's reference geometry and springs: unit vector n0 from node i to node j, length
-// L0 (m), normal and shear stiffness (N/m, or N/m per metre in 2-D).
+// L0 (m), normal and shear stiffness (N/m, or N/m per metre in 2-D), and, for a law that
+// remembers (frictional contact), the pair's memory.
 struct PairSprings {
   const Vec3& direction;
   double length;
   double kn;
   double ks;
+  const ContactMemory* memory = nullptr;
 };
 
 // One rank-1 stiffness term w d d' (w in N/m, d a unit vector).
@@ -38,10 +52,18 @@ struct RankOneTerm {
   Vec3 direction;
 };
 
-// Where a pair switches on an affine path: at s, into `to`.
+// One nonsymmetric rank-1 part of a tangent, w a b' (w in N/m, a and b unit vectors):
+// what the factor of the symmetric stiffness does not hold (a slipping contact).
+struct CouplingTerm {
+  double weight;
+  Vec3 left, right;
+};
+
+// Where a pair switches on an affine path: at s, into `to` (into slip: along `direction`).
 struct PairSwitch {
   double s = std::numeric_limits<double>::infinity();  // +inf: no switch before the end
   PairState to = PairState::open;
+  Vec3 direction = Vec3::Zero();
   bool found() const { return s < std::numeric_limits<double>::infinity(); }
 };
 
@@ -61,6 +83,26 @@ class InteractionLaw {
                                                    PairState state) const = 0;
   // True when the tension is linear in du (equilibrium paths are affine).
   virtual bool is_linear() const = 0;
+  // The part of dt/d(du) that stiffness_terms() leaves out (nonsymmetric): the solver
+  // adds it to the factor's answer (solvers/equilibrium.h). Empty for most laws.
+  virtual std::vector<CouplingTerm> coupling_terms(const PairSprings&, PairState) const {
+    return {};
+  }
+
+  // Laws whose pairs remember their history (a frictional contact's anchor, its slip and
+  // dissipated work; ContactMemory). advanced(): the memory carried along to du (the
+  // slip since the last commit added, its work by the trapezoidal rule in dn, exact on
+  // an affine path; a slip that went back is not taken: the settling makes that contact
+  // stick where it was); entered(): the memory on entering `to` from `from` at du (into
+  // slip along `direction`, or the sense of the tangential force when it is zero).
+  virtual bool remembers() const { return false; }
+  virtual ContactMemory advanced(const PairSprings& pair, PairState, const Vec3&) const {
+    return pair.memory ? *pair.memory : ContactMemory{};
+  }
+  virtual ContactMemory entered(const PairSprings& pair, PairState /*from*/, PairState /*to*/,
+                                const Vec3& /*du*/, const Vec3& /*direction*/) const {
+    return pair.memory ? *pair.memory : ContactMemory{};
+  }
 
   // The state the pair should be in at du: its own when the state is consistent.
   virtual PairState settled_state(const PairSprings&, PairState state, const Vec3&) const {

@@ -16,6 +16,7 @@
 #include "latfrac/geometry/lattice.h"
 #include "latfrac/mechanics/bond_law.h"
 #include "latfrac/mechanics/contact_law.h"
+#include "latfrac/mechanics/friction_law.h"
 #include "latfrac/mechanics/pair_state.h"
 #include "latfrac/mechanics/supports.h"
 
@@ -43,8 +44,12 @@ class Model {
   std::vector<std::uint8_t> intact_flags() const;
   // Contact (when the scene names it): a broken nearest-neighbour, Delaunay (random
   // lattice) or pre-cut bond keeps a compression-only normal spring kn, frictionless
-  // (contact_law.h).
+  // (contact_law.h) or with Coulomb friction (friction_law.h).
   bool has_contact() const { return contact_law_ != nullptr; }
+  // With friction: its contacts remember (ContactMemory per bond, kept here).
+  bool has_friction() const { return contact_law_ && contact_law_->remembers(); }
+  const std::vector<ContactMemory>& contact_memory() const { return memory_; }
+  const InteractionLaw* contact_law() const { return contact_law_.get(); }
   // Can bond b's faces touch once it is broken (a nearest-neighbour, Delaunay or pre-cut
   // bond, in a scene with contact)?
   bool can_touch(std::int64_t bond) const {
@@ -62,10 +67,10 @@ class Model {
     if (intact(bond)) return bond_law_.get();
     return contact_capable(bond) ? contact_law_.get() : nullptr;
   }
-  // Bond b's reference geometry and springs.
+  // Bond b's reference geometry and springs (and its memory, with friction).
   PairSprings springs(std::int64_t bond) const {
     return {lattice.bond_direction[bond], lattice.bond_length[bond], normal_stiffness[bond],
-            shear_stiffness[bond]};
+            shear_stiffness[bond], memory_.empty() ? nullptr : &memory_[bond]};
   }
   // True when every law is linear (paths between events are affine).
   bool is_linear() const { return bond_law_->is_linear(); }
@@ -99,7 +104,8 @@ class Model {
   std::vector<PairState> states_;
   DofMap dofs_;
   std::unique_ptr<BondLaw> bond_law_;
-  std::unique_ptr<ContactLaw> contact_law_;  // null without contact
+  std::unique_ptr<InteractionLaw> contact_law_;  // null without contact
+  std::vector<ContactMemory> memory_;            // per bond with friction, else empty
 };
 
 // The one way to change what a model's run changes (its pair states and supports) and
@@ -109,7 +115,9 @@ class Model {
 class ModelEditor {
  public:
   explicit ModelEditor(Model& model) : model_(model) {}
-  void set_laws(std::unique_ptr<BondLaw> bond_law, std::unique_ptr<ContactLaw> contact_law);
+  // contact_law: a ContactLaw, a FrictionalContactLaw, or null (no contact).
+  void set_laws(std::unique_ptr<BondLaw> bond_law, std::unique_ptr<InteractionLaw> contact_law);
+  void set_memory(std::int64_t bond, const ContactMemory& memory) { model_.memory_[bond] = memory; }
   // Every bond intact.
   void reset_states();
   void set_state(std::int64_t bond, PairState state) { model_.states_[bond] = state; }

@@ -9,8 +9,11 @@ namespace latfrac {
 // intact: the bond's springs act (its bond law).
 // open:   broken, and nothing acts (a contact that is apart, or a broken bond that cannot
 //         touch: next-nearest, or a scene without contact).
-// closed: broken, and its contact law acts (the faces touch).
-enum class PairState : std::uint8_t { intact = 0, open = 1, closed = 2 };
+// closed: broken, and its contact law acts (the faces touch); with friction, the contact
+//         sticks (its tangential spring is anchored, friction_law.h).
+// slip:   broken, closed and sliding: with friction, the tangential force is mu |Fn|
+//         along the sense of sliding.
+enum class PairState : std::uint8_t { intact = 0, open = 1, closed = 2, slip = 3 };
 
 // Whether the pair holds its two nodes together (intact, or a closed contact): what the
 // fragment check follows.

@@ -41,6 +41,7 @@ struct Loading {
 
 struct Contact {
   bool enabled = true;
+  double friction = 0;  // Coulomb's mu on closed contacts (0: frictionless), dimensionless
 };
 
 // A horizontal layer z_min <= z < z_max with its own material and strength; a bond

@@ -39,6 +39,8 @@ struct AffinePath {
 
 struct SolverCounters {
   long solves = 0;          // back-substitutions with the factor (each may hold several RHS)
+  long coupled_solves = 0;  // of the solves: with slipping contacts (solve_coupled)
+  long lu_factorizations = 0;  // of those: LU factorizations of the nonsymmetric stiffness
   long factorizations = 0;  // numeric factorizations
   long factor_updates = 0;  // rank updates of the factor
   long correction_solves = 0;  // of the solves: few-entry corrections (checked_solve)
@@ -65,6 +67,8 @@ class EquilibriumSolver {
   // those of the new state's go in. A fresh factorization replaces the updates after
   // refactor_every of them.
   void set_pair_state(std::int64_t bond, PairState state);
+  // Sets a frictional contact's memory (its anchor is a load while it sticks).
+  void set_contact_memory(std::int64_t bond, const ContactMemory& memory);
   // Holds the given nodes along the given components at the full displacement (their free
   // dofs become prescribed, rate 0); rebuilds the stiffness pattern and its analysis.
   struct Hold {
@@ -151,6 +155,26 @@ class EquilibriumSolver {
   std::string ill_conditioned(const Vector& free_displacement, double lambda,
                               double residual) const;
   std::string describe_unknown(std::int64_t unknown) const;
+  // Solves K x = rhs in place (n x columns) (coupled_solve.cpp): the factor's solve, and,
+  // while contacts slip, with their nonsymmetric parts K = A + U V' (A the factor's
+  // matrix; one column of U and V per slipping contact): up to woodbury_limit slipping
+  // contacts, the Sherman-Morrison-Woodbury correction x = y - W (I + V' W)^-1 V' y with
+  // y = A^-1 rhs and W = A^-1 U (one solve with as many columns as contacts slip);
+  // beyond, an LU of K (UMFPACK), whose cost does not grow with their number.
+  void solve_coupled(double* rhs, std::int64_t n, int columns);
+  static constexpr std::size_t woodbury_limit = 16;
+  // The LU (coupled_solve.cpp): analysed once per set of supports (the pattern of every
+  // bond's blocks), factorized once per model state, shared by the solves at that state.
+  struct Unsymmetric;
+  std::unique_ptr<Unsymmetric> unsymmetric_;
+  bool lu_current_ = false;
+  void woodbury_correction(const std::vector<std::int64_t>& slipping, double* rhs,
+                           std::int64_t n, int columns);
+  void unsymmetric_solve(const std::vector<std::int64_t>& slipping, double* rhs,
+                         std::int64_t n, int columns);
+  // Every stick contact off the boundary: its anchor loads the free dofs at zero free
+  // displacement (update_loads).
+  std::vector<std::int64_t> anchored_pairs() const;
   // Rank update of the factor with the columns sqrt(w) (e_j - e_i) (x) v on the free dofs.
   void update_factor(std::int64_t bond, const std::vector<RankOneTerm>& terms, bool downdate);
   long updates_since_factorization_ = 0;

@@ -1,0 +1,140 @@
+// Solves with the stiffness of a model whose contacts slip: the factor of its symmetric
+// part, corrected by Sherman-Morrison-Woodbury for a few slipping contacts, or an LU of the
+// whole nonsymmetric matrix for many (equilibrium.h, solve_coupled).
+#include <Eigen/Dense>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "latfrac/base/error.h"
+#include "latfrac/solvers/equilibrium.h"
+#include "unsymmetric.h"
+
+namespace latfrac {
+
+void EquilibriumSolver::solve_coupled(double* rhs, std::int64_t n, int columns) {
+  ++counters_.solves;
+  if (n == 0) return;
+  std::vector<std::int64_t> slipping;
+  if (model_.has_friction()) {
+    for (std::int64_t b = 0; b < model_.lattice.bond_count(); ++b)
+      if (model_.state(b) == PairState::slip && model_.contact_capable(b)) slipping.push_back(b);
+  }
+  if (slipping.size() > woodbury_limit) {
+    ++counters_.coupled_solves;
+    unsymmetric_solve(slipping, rhs, n, columns);
+    return;
+  }
+  factor_.solve(rhs, n, columns);
+  if (slipping.empty()) return;
+  ++counters_.coupled_solves;
+  woodbury_correction(slipping, rhs, n, columns);
+}
+
+namespace {
+
+// W = A^-1 U and the columns of V for the slipping contacts, and V' x.
+struct Coupling {
+  Eigen::MatrixXd w;
+  std::vector<CholeskyFactor::Column> v;
+  Eigen::MatrixXd v_times(const Eigen::Ref<const Eigen::MatrixXd>& x) const {
+    Eigen::MatrixXd product = Eigen::MatrixXd::Zero(w.cols(), x.cols());
+    for (Eigen::Index c = 0; c < w.cols(); ++c)
+      for (const auto& [row, value] : v[c]) product.row(c) += value * x.row(row);
+    return product;
+  }
+  Eigen::MatrixXd capacitance() const {
+    Eigen::MatrixXd c = v_times(w);
+    c.diagonal().array() += 1;
+    return c;
+  }
+};
+
+}  // namespace
+
+void EquilibriumSolver::woodbury_correction(const std::vector<std::int64_t>& slipping,
+                                            double* rhs, std::int64_t n, int columns) {
+  const auto k = static_cast<Eigen::Index>(slipping.size());
+  Coupling coupling{Eigen::MatrixXd::Zero(n, k), std::vector<CholeskyFactor::Column>(k)};
+  for (Eigen::Index c = 0; c < k; ++c) {
+    const std::int64_t bond = slipping[c];
+    CholeskyFactor::Column u;
+    for (const CouplingTerm& term :
+         model_.law_of(bond)->coupling_terms(model_.springs(bond), PairState::slip)) {
+      append_on_bond(bond, term.weight * term.left, u);
+      append_on_bond(bond, term.right, coupling.v[c]);
+    }
+    for (const auto& [row, value] : u) coupling.w(row, c) += value;
+  }
+  factor_.solve(coupling.w.data(), n, static_cast<int>(k));
+  if (rhs == nullptr) {
+    // The LU found K singular while A is not: (I + V' W) y = 0 gives K (W y) = 0, a motion
+    // that the slipping contacts leave free. Its largest unknown is held (the rule for
+    // singular stiffness, docs/robustness.md).
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(coupling.capacitance(), Eigen::ComputeFullV);
+    const Vector motion = coupling.w * svd.matrixV().col(k - 1);
+    Eigen::Index largest = 0;
+    motion.cwiseAbs().maxCoeff(&largest);
+    throw SingularStiffness("the stiffness with " + std::to_string(k) +
+                                " slipping contacts is singular: a part slides freely on them",
+                            largest);
+  }
+  Eigen::Map<Eigen::MatrixXd> x(rhs, n, columns);
+  x -= coupling.w * coupling.capacitance().partialPivLu().solve(coupling.v_times(x));
+}
+
+// K = the symmetric stiffness (both triangles, assembled afresh: the factor has been
+// updated since the stiffness matrix was last filled) + sum w G'a (G'b)' per slipping
+// contact, G the bond's difference operator on the free dofs. Every entry of the
+// stiffness pattern is kept (zeros too), and a contact's coupling lies in its bond's
+// blocks, so the pattern is that of the supports and its analysis is kept.
+void EquilibriumSolver::unsymmetric_solve(const std::vector<std::int64_t>& slipping, double* rhs,
+                                          std::int64_t n, int columns) {
+  if (!unsymmetric_) unsymmetric_ = std::make_unique<Unsymmetric>();
+  Unsymmetric& lu = *unsymmetric_;
+  if (!lu_current_) {
+    stiffness_.assemble(model_, model_.full_displacement(Vector::Zero(n), 0.0));
+    const std::vector<std::int64_t>& start = stiffness_.column_start();
+    const std::vector<std::int64_t>& row = stiffness_.row_index();
+    const std::vector<double>& value = stiffness_.values();
+    std::vector<Eigen::Triplet<double, int>> entries;
+    entries.reserve(2 * value.size() + 16 * slipping.size());
+    for (std::int64_t j = 0; j < n; ++j) {
+      for (std::int64_t k = start[j]; k < start[j + 1]; ++k) {
+        entries.emplace_back(static_cast<int>(row[k]), static_cast<int>(j), value[k]);
+        if (row[k] != j) entries.emplace_back(static_cast<int>(j), static_cast<int>(row[k]), value[k]);
+      }
+    }
+    for (std::int64_t bond : slipping) {
+      for (const CouplingTerm& term :
+           model_.law_of(bond)->coupling_terms(model_.springs(bond), PairState::slip)) {
+        CholeskyFactor::Column left, right;
+        append_on_bond(bond, term.weight * term.left, left);
+        append_on_bond(bond, term.right, right);
+        for (const auto& [r, a] : left)
+          for (const auto& [c, b] : right)
+            entries.emplace_back(static_cast<int>(r), static_cast<int>(c), a * b);
+      }
+    }
+    const bool analysed = lu.matrix.rows() == n;
+    lu.matrix.resize(n, n);
+    lu.matrix.setFromTriplets(entries.begin(), entries.end());
+    if (!analysed) lu.lu.analyzePattern(lu.matrix);
+    lu.lu.factorize(lu.matrix);
+    ++counters_.lu_factorizations;
+    if (lu.lu.info() != Eigen::Success) {
+      // Singular: a fresh factor of the symmetric part names a mechanism it has
+      // (SingularStiffness); else the slipping contacts made it (woodbury_correction).
+      lu.matrix.resize(0, 0);
+      factor_current_ = false;
+      refactorize(Vector::Zero(n), 0.0);
+      woodbury_correction(slipping, nullptr, n, 0);
+    }
+    lu_current_ = true;
+  }
+  Eigen::Map<Eigen::MatrixXd> x(rhs, n, columns);
+  const Eigen::MatrixXd b = x;
+  x = lu.lu.solve(b);
+}
+
+}  // namespace latfrac
