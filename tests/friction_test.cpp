@@ -13,6 +13,7 @@
 #include "latfrac/fracture/event_loop.h"
 #include "latfrac/fracture/pair_settling.h"
 #include "latfrac/fracture/pair_switch_source.h"
+#include "latfrac/io/problem_file.h"
 #include "latfrac/scene/run.h"
 #include "hard_case_checks.h"
 #include "scenes.h"
@@ -30,7 +31,13 @@ namespace {
 struct Block {
   static constexpr double P = 1e6, kn_c = 1e9, ks_c = 4e8, kn2 = 2e8, ks2 = 1e8, mu = 0.5;
   Model model;
-  Block() {
+  // Without the pusher (nodes 0 and 1, bond 0 only), node 1 also carries a sideways force
+  // `sideways` (N): the block is held by friction alone.
+  explicit Block(bool pusher = true, double sideways = 0) {
+    if (!pusher) {
+      build_held(sideways);
+      return;
+    }
     Lattice& l = model.lattice;
     l.dim = 2;
     l.spacing = 1;
@@ -58,6 +65,41 @@ struct Block {
     dofs.prescribed_rate.assign(6, 0);
     dofs.prescribed_rate[4] = 1;  // node 2, x
     dofs.free_count = 3;
+    ModelEditor editor(model);
+    editor.reset_states();
+    editor.set_dofs(dofs);
+    editor.set_laws(std::make_unique<SmallKinematics>(2),
+                    std::make_unique<FrictionalContactLaw>(1.0, mu));
+    editor.set_state(0, PairState::closed);
+  }
+  void build_held(double sideways) {
+    Lattice& l = model.lattice;
+    l.dim = 2;
+    l.spacing = 1;
+    l.node_volume = 1;
+    l.extent = {1, 0, 1};
+    l.positions = {{0, 0, 0}, {0, 0, 1}};
+    l.face_mask.assign(2, 0);
+    l.bonds = {{0, 1, BondKind::nearest}};
+    l.bond_direction = {{0, 0, 1}};
+    l.bond_length = {1};
+    model.normal_stiffness = {kn_c};
+    model.shear_stiffness = {ks_c};
+    model.precut = {1};
+    model.bond_young = {1e9};
+    model.bond_shear_modulus = {4e8};
+    model.bond_sigma0 = {1e30};
+    model.bond_tau0 = {1e30};
+    model.node_poisson.assign(2, 0.2);
+    model.external_force = Vector::Zero(4);
+    model.external_force[2] = sideways;
+    model.external_force[3] = -P;
+    DofMap dofs;
+    dofs.dim = 2;
+    dofs.free_index = {-1, -1, 0, 1};
+    dofs.prescribed_base.assign(4, 0);
+    dofs.prescribed_rate.assign(4, 0);
+    dofs.free_count = 2;
     ModelEditor editor(model);
     editor.reset_states();
     editor.set_dofs(dofs);
@@ -288,4 +330,51 @@ TEST_CASE("Friction: a frictional contact with mu = 0 breaks the same bonds as t
     CHECK(a.events[k].bond == b.events[k].bond);
     CHECK(a.events[k].lambda == Approx(b.events[k].lambda).epsilon(1e-9));
   }
+}
+
+TEST_CASE("Friction: a block held by friction alone stays; one that friction cannot hold is "
+          "held by the mechanism rule, without NaN",
+          "[friction][hard]") {
+  const double P = Block::P, mu = Block::mu;
+  {
+    Block block(false, 0.8 * mu * P);  // within the cone: it sticks
+    Driver run(block.model, unbreakable());
+    run.settling.settle(0);
+    run.follow(0, 0.01);
+    CHECK(block.model.state(0) == PairState::closed);
+    const Vector u = run.equilibrium.displacement(0.01);
+    CHECK(u[2] == Approx(0.8 * mu * P / Block::ks_c).epsilon(1e-10));
+    CHECK(u[3] == Approx(-P / Block::kn_c).epsilon(1e-10));
+    CHECK(run.equilibrium.fragments().empty());
+  }
+  {
+    // Beyond the cone the block slips, and slipping it has no sideways stiffness: the
+    // stiffness is singular, and the block is held where it stands.
+    Block block(false, 1.2 * mu * P);
+    Driver run(block.model, unbreakable());
+    REQUIRE_NOTHROW(run.settling.settle(0));
+    REQUIRE_NOTHROW(run.follow(0, 0.01));
+    const Vector u = run.equilibrium.displacement(0.01);
+    CHECK(u.allFinite());
+    CHECK(block.model.dofs().free_count < 2);
+  }
+}
+
+TEST_CASE("Hard: Fig. 6 with mu = 0.6, whose contacts stick and slip back and forth, finishes "
+          "the same on every run",
+          "[friction][hard]") {
+  // At 3000 m the scene's contacts meet the cycle rule and the unstable-contact rule
+  // (docs/robustness.md) 16 times; without them the run does not end.
+  const Scene scene = read_problem_file(
+      std::string(LATFRAC_PROBLEMS_DIR) + "/fig6-elliptic-graben-2d.toml",
+      {"stepping.method=\"event\"", "contact.friction=0.6", "lattice.spacing=3000",
+       "output.snapshots=[0.04]"});
+  const RunResult a = run_scene(scene, quiet());
+  CHECK(a.summary.contact_cycles >= 1);
+  CHECK(a.summary.friction_work > 0);
+  CHECK(snapshots_finite(a));
+  CHECK(all_finite(a.friction_work));
+  const RunResult b = run_scene(scene, quiet());
+  check_same_events(a, b);
+  CHECK(a.summary.friction_work == b.summary.friction_work);
 }

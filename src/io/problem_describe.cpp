@@ -174,8 +174,8 @@ std::string describe(const Scene& scene) {
     out.entry("enabled", "true");
     out.entry("friction", scene.contact->friction,
               scene.contact->friction > 0
-                  ? "(Coulomb's mu on closed contacts: stick, or slip at mu |Fn|)"
-                  : "(frictionless contacts)");
+                  ? "(dimensionless: Coulomb's mu on closed contacts, stick or slip at mu |Fn|)"
+                  : "(dimensionless: 0, frictionless contacts)");
   } else {
     out.off("contact");
   }
