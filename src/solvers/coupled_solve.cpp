@@ -35,8 +35,8 @@ namespace {
 
 // W = A^-1 U and the columns of V for the slipping contacts, and V' x.
 struct Coupling {
-  Eigen::MatrixXd w;
-  std::vector<CholeskyFactor::Column> v;
+  const Eigen::MatrixXd& w;
+  const std::vector<CholeskyFactor::Column>& v;
   Eigen::MatrixXd v_times(const Eigen::Ref<const Eigen::MatrixXd>& x) const {
     Eigen::MatrixXd product = Eigen::MatrixXd::Zero(w.cols(), x.cols());
     for (Eigen::Index c = 0; c < w.cols(); ++c)
@@ -55,18 +55,20 @@ struct Coupling {
 void EquilibriumSolver::woodbury_correction(const std::vector<std::int64_t>& slipping,
                                             double* rhs, std::int64_t n, int columns) {
   const auto k = static_cast<Eigen::Index>(slipping.size());
-  Coupling coupling{Eigen::MatrixXd::Zero(n, k), std::vector<CholeskyFactor::Column>(k)};
+  Eigen::MatrixXd w = Eigen::MatrixXd::Zero(n, k);
+  std::vector<CholeskyFactor::Column> v(k);
   for (Eigen::Index c = 0; c < k; ++c) {
     const std::int64_t bond = slipping[c];
     CholeskyFactor::Column u;
     for (const CouplingTerm& term :
          model_.law_of(bond)->coupling_terms(model_.springs(bond), PairState::slip)) {
       append_on_bond(bond, term.weight * term.left, u);
-      append_on_bond(bond, term.right, coupling.v[c]);
+      append_on_bond(bond, term.right, v[c]);
     }
-    for (const auto& [row, value] : u) coupling.w(row, c) += value;
+    for (const auto& [row, value] : u) w(row, c) += value;
   }
-  factor_.solve(coupling.w.data(), n, static_cast<int>(k));
+  factor_.solve(w.data(), n, static_cast<int>(k));
+  const Coupling coupling{w, v};
   if (rhs == nullptr) {
     // The LU found K singular while A is not: (I + V' W) y = 0 gives K (W y) = 0, a motion
     // that the slipping contacts leave free. Its largest unknown is held (the rule for
@@ -92,7 +94,15 @@ void EquilibriumSolver::unsymmetric_solve(const std::vector<std::int64_t>& slipp
                                           std::int64_t n, int columns) {
   if (!unsymmetric_) unsymmetric_ = std::make_unique<Unsymmetric>();
   Unsymmetric& lu = *unsymmetric_;
+  const std::vector<int> axes = model_.lattice.axes();
+  if (lu_current_ &&
+      static_cast<Eigen::Index>(lu_changes_.size() * axes.size()) > lu_update_limit)
+    lu_current_ = false;
   if (!lu_current_) {
+    lu_changes_.clear();
+    lu_changes_solved_ = 0;
+    lu_w_.resize(n, 0);
+    lu_v_.clear();
     stiffness_.assemble(model_, model_.full_displacement(Vector::Zero(n), 0.0));
     const std::vector<std::int64_t>& start = stiffness_.column_start();
     const std::vector<std::int64_t>& row = stiffness_.row_index();
@@ -132,9 +142,32 @@ void EquilibriumSolver::unsymmetric_solve(const std::vector<std::int64_t>& slipp
     }
     lu_current_ = true;
   }
+  // The pairs changed since the factorization: dK = sum over them and the axes c of
+  // G'(dJ e_c) (G' e_c)'; W = LU^-1 U is extended by the new columns only.
+  if (lu_changes_solved_ < lu_changes_.size()) {
+    Eigen::MatrixXd u = Eigen::MatrixXd::Zero(n, 0);
+    for (; lu_changes_solved_ < lu_changes_.size(); ++lu_changes_solved_) {
+      const auto& [bond, change] = lu_changes_[lu_changes_solved_];
+      for (const int axis : axes) {
+        CholeskyFactor::Column left, right;
+        append_on_bond(bond, change.col(axis), left);
+        append_on_bond(bond, Vec3::Unit(axis), right);
+        u.conservativeResize(n, u.cols() + 1);
+        u.col(u.cols() - 1).setZero();
+        for (const auto& [row, value] : left) u(row, u.cols() - 1) += value;
+        lu_v_.push_back(std::move(right));
+      }
+    }
+    const Eigen::MatrixXd solved = lu.lu.solve(u);
+    lu_w_.conservativeResize(n, lu_w_.cols() + solved.cols());
+    lu_w_.rightCols(solved.cols()) = solved;
+  }
   Eigen::Map<Eigen::MatrixXd> x(rhs, n, columns);
   const Eigen::MatrixXd b = x;
   x = lu.lu.solve(b);
+  if (lu_w_.cols() == 0) return;
+  const Coupling coupling{lu_w_, lu_v_};
+  x -= lu_w_ * coupling.capacitance().partialPivLu().solve(coupling.v_times(x));
 }
 
 }  // namespace latfrac

@@ -55,6 +55,7 @@ void EquilibriumSolver::refactorize(const Vector& free_displacement, double lamb
     return;
   }
   last_solution_valid_ = false;
+  lu_current_ = false;  // a fresh factor (a missed residual, say): a fresh LU too
   stiffness_.assemble(model_, model_.full_displacement(free_displacement, lambda));
   factor_.factorize(stiffness_);
   ++counters_.factorizations;
@@ -199,7 +200,7 @@ void EquilibriumSolver::set_pair_state(std::int64_t bond, PairState state) {
     last_solution_valid_ = false;
     loads_current_ = false;
   }
-  lu_current_ = false;
+  const Mat3 jacobian_before = lu_current_ ? pair_jacobian(bond) : Mat3::Zero();
   if (factor_current_)
     changes_since_factorization_.push_back({bond, static_cast<std::uint8_t>(state)});
   const PairSprings springs = model_.springs(bond);
@@ -207,6 +208,7 @@ void EquilibriumSolver::set_pair_state(std::int64_t bond, PairState state) {
   std::vector<RankOneTerm> removed =
       old_law ? old_law->stiffness_terms(springs, model_.state(bond)) : std::vector<RankOneTerm>{};
   editor_.set_state(bond, state);
+  note_lu_change(bond, jacobian_before);
   const InteractionLaw* new_law = model_.law_of(bond);
   std::vector<RankOneTerm> added =
       new_law ? new_law->stiffness_terms(springs, state) : std::vector<RankOneTerm>{};
@@ -236,9 +238,24 @@ void EquilibriumSolver::set_contact_memory(std::int64_t bond, const ContactMemor
   }
   if (model_.state(bond) == PairState::slip && old.slip_direction != memory.slip_direction) {
     last_solution_valid_ = false;
-    lu_current_ = false;
+    const Mat3 before = lu_current_ ? pair_jacobian(bond) : Mat3::Zero();
+    editor_.set_memory(bond, memory);
+    note_lu_change(bond, before);
+    return;
   }
   editor_.set_memory(bond, memory);
+}
+
+Mat3 EquilibriumSolver::pair_jacobian(std::int64_t bond) const {
+  const InteractionLaw* law = model_.law_of(bond);
+  if (!law || model_.state(bond) == PairState::open) return Mat3::Zero();
+  return law->jacobian(model_.springs(bond), model_.state(bond), Vec3::Zero());
+}
+
+void EquilibriumSolver::note_lu_change(std::int64_t bond, const Mat3& before) {
+  if (!lu_current_) return;
+  const Mat3 change = pair_jacobian(bond) - before;
+  if (!change.isZero(0)) lu_changes_.push_back({bond, change});
 }
 
 void EquilibriumSolver::hold(const std::vector<Hold>& holds, const Vector& displacement) {

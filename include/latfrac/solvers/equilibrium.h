@@ -164,10 +164,24 @@ class EquilibriumSolver {
   void solve_coupled(double* rhs, std::int64_t n, int columns);
   static constexpr std::size_t woodbury_limit = 16;
   // The LU (coupled_solve.cpp): analysed once per set of supports (the pattern of every
-  // bond's blocks), factorized once per model state, shared by the solves at that state.
+  // bond's blocks). Like the Cholesky factor it is not redone at every change: the pairs
+  // that changed since it was factorized (state, or sense of slip) are kept as their
+  // Jacobian's change dJ, and the solves correct the LU's answer by Woodbury for them
+  // (dim columns each; W = LU^-1 U grows by those columns only); past lu_update_limit
+  // columns, or when lu_current_ is false (new supports, a fresh Cholesky factor after a
+  // missed residual), the LU is factorized afresh.
   struct Unsymmetric;
   std::unique_ptr<Unsymmetric> unsymmetric_;
   bool lu_current_ = false;
+  static constexpr Eigen::Index lu_update_limit = 64;
+  std::vector<std::pair<std::int64_t, Mat3>> lu_changes_;
+  std::size_t lu_changes_solved_ = 0;  // of lu_changes_: those with columns in lu_w_
+  Eigen::MatrixXd lu_w_;
+  std::vector<CholeskyFactor::Column> lu_v_;
+  // The pair's exact tangent dt/d(du) in its state (zero without a law).
+  Mat3 pair_jacobian(std::int64_t bond) const;
+  // Records the change of bond's Jacobian from `before`, while an LU is current.
+  void note_lu_change(std::int64_t bond, const Mat3& before);
   void woodbury_correction(const std::vector<std::int64_t>& slipping, double* rhs,
                            std::int64_t n, int columns);
   void unsymmetric_solve(const std::vector<std::int64_t>& slipping, double* rhs,
