@@ -215,7 +215,7 @@ TEST_CASE("Snapshots: the last by default, an index out of range or none is an i
   CHECK_THROWS_AS(analyze_faults(result), InputError);
 }
 
-TEST_CASE("Break modes give the shares; pre-cuts are left out", "[analysis]") {
+TEST_CASE("Break modes give the shares, and pre-cuts are left out", "[analysis]") {
   RunResult result = triangular();
   const auto fault_bonds =
       break_where(result, [](const Xyz& m) { return std::abs(m[0] - 40.2) < 0.5; });
@@ -251,7 +251,7 @@ TEST_CASE("A shattered region is flagged diffuse, a band beside it is not", "[an
   CHECK(to_text(report).find("diffuse") != std::string::npos);
 }
 
-TEST_CASE("Small clusters are dropped; the threshold is an option", "[analysis]") {
+TEST_CASE("Small clusters are dropped, and the threshold is an option", "[analysis]") {
   RunResult result = triangular(30, 20);
   const auto marked =
       break_where(result, [](const Xyz& m) { return std::hypot(m[0] - 10.0, m[2] - 8.0) < 0.55; });

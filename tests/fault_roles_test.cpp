@@ -168,7 +168,7 @@ TEST_CASE("A fault along a wall bounds no graben", "[analysis][roles]") {
   CHECK(analyze_faults(result, kLastSnapshot, options).grabens.size() == 1);
 }
 
-TEST_CASE("Nested faults give the innermost graben; a fault outside the block hides none",
+TEST_CASE("Nested faults give the innermost graben, and a fault outside the block hides none",
           "[analysis][roles]") {
   RunResult result = triangular(kColumns, kRows, true);
   const double top = top_z(result);

@@ -332,7 +332,7 @@ TEST_CASE("Friction: a frictional contact with mu = 0 breaks the same bonds as t
   }
 }
 
-TEST_CASE("Friction: a block held by friction alone stays; one that friction cannot hold is "
+TEST_CASE("Friction: a block held by friction alone stays, and one that friction cannot hold is "
           "held by the mechanism rule, without NaN",
           "[friction][hard]") {
   const double P = Block::P, mu = Block::mu;

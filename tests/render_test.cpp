@@ -194,7 +194,7 @@ TEST_CASE("an SVG parses as XML and holds one stroked path per broken bond", "[r
   CHECK(paths.elements > 4);  // and the lattice, frame and text
 }
 
-TEST_CASE("a PDF starts with %PDF; the format follows the extension in any case", "[render]") {
+TEST_CASE("a PDF starts with %PDF, and the format follows the extension in any case", "[render]") {
   ScratchDir dir;
   const RunResult result = triangular_patch();
   render_picture(result, 0, dir.file("picture.PDF"));

@@ -64,7 +64,7 @@ double uniaxial_eps_zz(const Material& m, double g, double depth) {
 
 }  // namespace
 
-TEST_CASE("Gravity alone: the deep diagonals' elliptic f matches the hand value; m = 2 breaks, m = 3 not",
+TEST_CASE("Gravity alone: the deep diagonals' elliptic f matches the hand value: m = 2 breaks, m = 3 not",
           "[validation]") {
   // With bond strains and the walls held, a diagonal bond at 60 degrees sees eps_n =
   // (3/4) eps_zz < 0 and the shear strain gamma = (sqrt3 / 4) |eps_zz|, so

@@ -61,13 +61,25 @@ void PairSwitchSource::take(double lambda) {
 }
 
 SwitchGuard PairSwitchSource::guard() const {
-  return {sets_lambda_, switch_at_start_, {sets_at_lambda_.begin(), sets_at_lambda_.end()}};
+  SwitchGuard guard{sets_lambda_, switch_at_start_, {sets_at_lambda_.begin(), sets_at_lambda_.end()}};
+  for (const auto& [bond, lambda] : stuck_at_) {
+    guard.stuck_bonds.push_back(bond);
+    guard.stuck_lambdas.push_back(lambda);
+  }
+  guard.unstable.assign(unstable_.begin(), unstable_.end());
+  guard.unstable_lambda = unstable_lambda_;
+  return guard;
 }
 
 void PairSwitchSource::restore(const SwitchGuard& guard) {
   sets_lambda_ = guard.lambda;
   switch_at_start_ = guard.switch_at_start;
   sets_at_lambda_ = {guard.sets.begin(), guard.sets.end()};
+  stuck_at_.clear();
+  for (std::size_t k = 0; k < guard.stuck_bonds.size() && k < guard.stuck_lambdas.size(); ++k)
+    stuck_at_[guard.stuck_bonds[k]] = guard.stuck_lambdas[k];
+  unstable_ = {guard.unstable.begin(), guard.unstable.end()};
+  unstable_lambda_ = guard.unstable_lambda;
 }
 
 }  // namespace latfrac

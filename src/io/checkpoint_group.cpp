@@ -92,6 +92,16 @@ void write_checkpoint_group(hid_t file, const RunCheckpoint& c) {
   std::vector<std::uint8_t> sets;
   for (const std::string& set : c.switches.sets) sets.insert(sets.end(), set.begin(), set.end());
   hdf5::write_dataset(file, group + "/switch_sets", sets, {c.switches.sets.size(), bonds});
+  // Friction's unstable-contact guard (absent in files without friction).
+  if (!c.switches.stuck_bonds.empty() || !c.switches.unstable.empty()) {
+    hdf5::write_attribute(file, group, "unstable_lambda", c.switches.unstable_lambda);
+    hdf5::write_dataset(file, group + "/stuck_bond", c.switches.stuck_bonds,
+                        {c.switches.stuck_bonds.size()});
+    hdf5::write_dataset(file, group + "/stuck_lambda", c.switches.stuck_lambdas,
+                        {c.switches.stuck_lambdas.size()});
+    hdf5::write_dataset(file, group + "/unstable_bond", c.switches.unstable,
+                        {c.switches.unstable.size()});
+  }
 }
 
 RunCheckpoint read_checkpoint_group(hid_t file) {
@@ -157,6 +167,17 @@ RunCheckpoint read_checkpoint_group(hid_t file) {
   const auto sets = hdf5::read_dataset<std::uint8_t>(file, group + "/switch_sets", sets_shape);
   for (hsize_t i = 0; i < sets_shape[0]; ++i)
     c.switches.sets.emplace_back(sets.begin() + i * bonds, sets.begin() + (i + 1) * bonds);
+  if (hdf5::exists(file, group + "/stuck_bond")) {
+    c.switches.unstable_lambda = hdf5::read_attribute<double>(file, group, "unstable_lambda");
+    c.switches.stuck_bonds = hdf5::read_dataset<std::int64_t>(
+        file, group + "/stuck_bond", {length_of(file, group + "/stuck_bond")});
+    c.switches.stuck_lambdas = hdf5::read_dataset<double>(
+        file, group + "/stuck_lambda", {length_of(file, group + "/stuck_lambda")});
+    c.switches.unstable = hdf5::read_dataset<std::int64_t>(
+        file, group + "/unstable_bond", {length_of(file, group + "/unstable_bond")});
+    if (c.switches.stuck_bonds.size() != c.switches.stuck_lambdas.size())
+      throw InputError("datasets " + group + "/stuck_bond and stuck_lambda differ in length");
+  }
   return c;
 }
 

@@ -29,7 +29,13 @@ namespace latfrac {
 struct SwitchGuard {
   double lambda = std::numeric_limits<double>::quiet_NaN();
   bool switch_at_start = true;
-  std::vector<std::string> sets;  // each one byte per bond, 1 if closed
+  std::vector<std::string> sets;  // each one byte per bond (pair_settling.h, closed_pairs)
+  // Friction: where contacts last stuck (bond, lambda), and the contacts taken as unstable
+  // with the lambda at which the last one was (pair_switch_source.h).
+  std::vector<std::int64_t> stuck_bonds;
+  std::vector<double> stuck_lambdas;
+  std::vector<std::int64_t> unstable;
+  double unstable_lambda = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct RunCheckpoint {
