@@ -136,7 +136,8 @@ TEST_CASE("a resumed 2-D event-driven run gives the uninterrupted events", "[res
 TEST_CASE("a resumed run with friction gives the uninterrupted events, slip and work",
           "[restart][friction]") {
   // Not yet Fig. 6 at 3000 m with mu = 0.6: stopped three times it resumes to the same
-  // events, but its final displacements differ by up to 2e-6 of their size (docs/restart.md).
+  // events, but its final displacements differ by up to 2e-6 of their size, because the
+  // LU of the slipping contacts is not replayed (docs/restart.md).
   check_resumes(shipped("graben-complete-2d.toml", {"lattice.spacing=3000"}));
 }
 
