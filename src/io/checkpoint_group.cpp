@@ -87,6 +87,15 @@ void write_checkpoint_group(hid_t file, const RunCheckpoint& c) {
   hdf5::write_dataset(file, group + "/pending_value", pending_value, {pending_value.size()});
   hdf5::write_dataset(file, group + "/elimination_order", factor.elimination_order,
                       {factor.elimination_order.size()});
+  if (factor.lu_current) {
+    hdf5::write_dataset(file, group + "/lu_states", factor.lu_states, {factor.lu_states.size()});
+    hdf5::write_dataset(file, group + "/lu_directions", factor.lu_directions,
+                        {factor.lu_directions.size()});
+    hdf5::write_dataset(file, group + "/lu_change_bond", factor.lu_change_bonds,
+                        {factor.lu_change_bonds.size()});
+    hdf5::write_dataset(file, group + "/lu_change_value", factor.lu_change_values,
+                        {factor.lu_change_values.size()});
+  }
 
   const hsize_t bonds = c.pair_states.size();
   std::vector<std::uint8_t> sets;
@@ -158,6 +167,18 @@ RunCheckpoint read_checkpoint_group(hid_t file) {
   if (hdf5::exists(file, group + "/elimination_order")) {
     factor.elimination_order = hdf5::read_dataset<std::int64_t>(
         file, group + "/elimination_order", {length_of(file, group + "/elimination_order")});
+  }
+
+  if (hdf5::exists(file, group + "/lu_states")) {
+    factor.lu_current = true;
+    auto whole = [&](const std::string& name) { return hsize_t{length_of(file, group + name)}; };
+    factor.lu_states = hdf5::read_dataset<std::uint8_t>(file, group + "/lu_states", {whole("/lu_states")});
+    factor.lu_directions =
+        hdf5::read_dataset<double>(file, group + "/lu_directions", {whole("/lu_directions")});
+    factor.lu_change_bonds = hdf5::read_dataset<std::int64_t>(file, group + "/lu_change_bond",
+                                                              {whole("/lu_change_bond")});
+    factor.lu_change_values = hdf5::read_dataset<double>(file, group + "/lu_change_value",
+                                                         {whole("/lu_change_value")});
   }
 
   const hdf5::Shape sets_shape = hdf5::dataset_shape(file, group + "/switch_sets");

@@ -92,56 +92,12 @@ void EquilibriumSolver::woodbury_correction(const std::vector<std::int64_t>& sli
 // blocks, so the pattern is that of the supports and its analysis is kept.
 void EquilibriumSolver::unsymmetric_solve(const std::vector<std::int64_t>& slipping, double* rhs,
                                           std::int64_t n, int columns) {
-  if (!unsymmetric_) unsymmetric_ = std::make_unique<Unsymmetric>();
-  Unsymmetric& lu = *unsymmetric_;
   const std::vector<int> axes = model_.lattice.axes();
   if (lu_current_ &&
       static_cast<Eigen::Index>(lu_changes_.size() * axes.size()) > lu_update_limit)
     lu_current_ = false;
-  if (!lu_current_) {
-    lu_changes_.clear();
-    lu_changes_solved_ = 0;
-    lu_w_.resize(n, 0);
-    lu_v_.clear();
-    stiffness_.assemble(model_, model_.full_displacement(Vector::Zero(n), 0.0));
-    const std::vector<std::int64_t>& start = stiffness_.column_start();
-    const std::vector<std::int64_t>& row = stiffness_.row_index();
-    const std::vector<double>& value = stiffness_.values();
-    std::vector<Eigen::Triplet<double, int>> entries;
-    entries.reserve(2 * value.size() + 16 * slipping.size());
-    for (std::int64_t j = 0; j < n; ++j) {
-      for (std::int64_t k = start[j]; k < start[j + 1]; ++k) {
-        entries.emplace_back(static_cast<int>(row[k]), static_cast<int>(j), value[k]);
-        if (row[k] != j) entries.emplace_back(static_cast<int>(j), static_cast<int>(row[k]), value[k]);
-      }
-    }
-    for (std::int64_t bond : slipping) {
-      for (const CouplingTerm& term :
-           model_.law_of(bond)->coupling_terms(model_.springs(bond), PairState::slip)) {
-        CholeskyFactor::Column left, right;
-        append_on_bond(bond, term.weight * term.left, left);
-        append_on_bond(bond, term.right, right);
-        for (const auto& [r, a] : left)
-          for (const auto& [c, b] : right)
-            entries.emplace_back(static_cast<int>(r), static_cast<int>(c), a * b);
-      }
-    }
-    const bool analysed = lu.matrix.rows() == n;
-    lu.matrix.resize(n, n);
-    lu.matrix.setFromTriplets(entries.begin(), entries.end());
-    if (!analysed) lu.lu.analyzePattern(lu.matrix);
-    lu.lu.factorize(lu.matrix);
-    ++counters_.lu_factorizations;
-    if (lu.lu.info() != Eigen::Success) {
-      // Singular: a fresh factor of the symmetric part names a mechanism it has
-      // (SingularStiffness); else the slipping contacts made it (woodbury_correction).
-      lu.matrix.resize(0, 0);
-      factor_current_ = false;
-      refactorize(Vector::Zero(n), 0.0);
-      woodbury_correction(slipping, nullptr, n, 0);
-    }
-    lu_current_ = true;
-  }
+  if (!lu_current_) factorize_unsymmetric(slipping, n);
+  Unsymmetric& lu = *unsymmetric_;
   // The pairs changed since the factorization: dK = sum over them and the axes c of
   // G'(dJ e_c) (G' e_c)'; W = LU^-1 U is extended by the new columns only.
   if (lu_changes_solved_ < lu_changes_.size()) {
@@ -168,6 +124,65 @@ void EquilibriumSolver::unsymmetric_solve(const std::vector<std::int64_t>& slipp
   if (lu_w_.cols() == 0) return;
   const Coupling coupling{lu_w_, lu_v_};
   x -= lu_w_ * coupling.capacitance().partialPivLu().solve(coupling.v_times(x));
+}
+
+
+// Factorizes K = A + the slipping contacts' couplings afresh (unsymmetric_solve), and
+// records the pair states and senses of slip it was computed for (a checkpoint's
+// History replays it).
+void EquilibriumSolver::factorize_unsymmetric(const std::vector<std::int64_t>& slipping,
+                                              std::int64_t n) {
+  if (!unsymmetric_) unsymmetric_ = std::make_unique<Unsymmetric>();
+  Unsymmetric& lu = *unsymmetric_;
+  lu_changes_.clear();
+  lu_changes_solved_ = 0;
+  lu_w_.resize(n, 0);
+  lu_v_.clear();
+  stiffness_.assemble(model_, model_.full_displacement(Vector::Zero(n), 0.0));
+  const std::vector<std::int64_t>& start = stiffness_.column_start();
+  const std::vector<std::int64_t>& row = stiffness_.row_index();
+  const std::vector<double>& value = stiffness_.values();
+  std::vector<Eigen::Triplet<double, int>> entries;
+  entries.reserve(2 * value.size() + 16 * slipping.size());
+  for (std::int64_t j = 0; j < n; ++j) {
+    for (std::int64_t k = start[j]; k < start[j + 1]; ++k) {
+      entries.emplace_back(static_cast<int>(row[k]), static_cast<int>(j), value[k]);
+      if (row[k] != j) entries.emplace_back(static_cast<int>(j), static_cast<int>(row[k]), value[k]);
+    }
+  }
+  for (std::int64_t bond : slipping) {
+    for (const CouplingTerm& term :
+         model_.law_of(bond)->coupling_terms(model_.springs(bond), PairState::slip)) {
+      CholeskyFactor::Column left, right;
+      append_on_bond(bond, term.weight * term.left, left);
+      append_on_bond(bond, term.right, right);
+      for (const auto& [r, a] : left)
+        for (const auto& [c, b] : right)
+          entries.emplace_back(static_cast<int>(r), static_cast<int>(c), a * b);
+    }
+  }
+  const bool analysed = lu.matrix.rows() == n;
+  lu.matrix.resize(n, n);
+  lu.matrix.setFromTriplets(entries.begin(), entries.end());
+  if (!analysed) lu.lu.analyzePattern(lu.matrix);
+  lu.lu.factorize(lu.matrix);
+  ++counters_.lu_factorizations;
+  if (lu.lu.info() != Eigen::Success) {
+    // Singular: a fresh factor of the symmetric part names a mechanism it has
+    // (SingularStiffness); else the slipping contacts made it (woodbury_correction).
+    lu.matrix.resize(0, 0);
+    factor_current_ = false;
+    refactorize(Vector::Zero(n), 0.0);
+    woodbury_correction(slipping, nullptr, n, 0);
+  }
+  lu_current_ = true;
+    lu_factored_states_.resize(model_.pair_states().size());
+  for (std::size_t b = 0; b < lu_factored_states_.size(); ++b)
+    lu_factored_states_[b] = static_cast<std::uint8_t>(model_.pair_states()[b]);
+  lu_factored_directions_.clear();
+  for (const ContactMemory& m : model_.contact_memory())
+    lu_factored_directions_.insert(lu_factored_directions_.end(),
+                                   {m.slip_direction.x(), m.slip_direction.y(), m.slip_direction.z()});
 }
 
 }  // namespace latfrac

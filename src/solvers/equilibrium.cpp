@@ -78,6 +78,16 @@ EquilibriumSolver::History EquilibriumSolver::history() const {
     h.changes = changes_since_factorization_;
   }
   h.elimination_order = factor_.given_order();
+  h.lu_current = lu_current_ && model_.has_friction();
+  if (h.lu_current) {
+    h.lu_states = lu_factored_states_;
+    h.lu_directions = lu_factored_directions_;
+    for (const auto& [bond, change] : lu_changes_) {
+      h.lu_change_bonds.push_back(bond);
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) h.lu_change_values.push_back(change(r, c));
+    }
+  }
   h.solution_valid = last_solution_valid_;
   if (last_solution_valid_) {
     h.solution_lambda = last_lambda_;
@@ -105,6 +115,7 @@ void EquilibriumSolver::rebuild(const History& history, const std::vector<PairSt
     editor_.set_state(static_cast<std::int64_t>(b), states[b]);
   }
   loads_current_ = false;
+  if (history.lu_current) rebuild_lu(history);
   if (history.solution_valid) {
     last_solution_ = history.solution;
     last_lambda_ = history.solution_lambda;
@@ -112,6 +123,41 @@ void EquilibriumSolver::rebuild(const History& history, const std::vector<PairSt
     pending_forces_ = history.pending_forces;
   }
   counters_ = {};
+}
+
+// The LU as the run had it: factorized with the model in the states and senses of slip
+// it was computed for, then the changes since taken back (their columns of W are solved
+// again at the next solve, one column at a time as before, so bit for bit).
+void EquilibriumSolver::rebuild_lu(const History& history) {
+  const std::size_t bonds = model_.pair_states().size();
+  if (history.lu_states.size() != bonds || history.lu_directions.size() != 3 * bonds ||
+      history.lu_change_values.size() != 9 * history.lu_change_bonds.size())
+    throw Error("a checkpoint's LU history does not fit this model");
+  const std::vector<PairState> now = model_.pair_states();
+  const std::vector<ContactMemory> memory = model_.contact_memory();
+  std::vector<std::int64_t> slipping;
+  for (std::size_t b = 0; b < bonds; ++b) {
+    const auto bond = static_cast<std::int64_t>(b);
+    editor_.set_state(bond, static_cast<PairState>(history.lu_states[b]));
+    ContactMemory m = memory[b];
+    m.slip_direction = Vec3(history.lu_directions[3 * b], history.lu_directions[3 * b + 1],
+                            history.lu_directions[3 * b + 2]);
+    editor_.set_memory(bond, m);
+    if (model_.state(bond) == PairState::slip && model_.contact_capable(bond))
+      slipping.push_back(bond);
+  }
+  factorize_unsymmetric(slipping, model_.dofs().free_count);
+  for (std::size_t b = 0; b < bonds; ++b) {
+    editor_.set_state(static_cast<std::int64_t>(b), now[b]);
+    editor_.set_memory(static_cast<std::int64_t>(b), memory[b]);
+  }
+  for (std::size_t k = 0; k < history.lu_change_bonds.size(); ++k) {
+    Mat3 change;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) change(r, c) = history.lu_change_values[9 * k + 3 * r + c];
+    lu_changes_.push_back({history.lu_change_bonds[k], change});
+  }
+  lu_current_ = true;
 }
 
 void EquilibriumSolver::update_factor(std::int64_t bond, const std::vector<RankOneTerm>& terms,

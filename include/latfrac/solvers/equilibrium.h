@@ -109,12 +109,21 @@ class EquilibriumSolver {
     // ordered afresh, would round differently; analysing with the same input again gives
     // the same analysis.
     std::vector<std::int64_t> elimination_order;
+    // With friction, the LU of the nonsymmetric stiffness the same way: the pair states
+    // and senses of slip (3 per bond) it was factorized for, and the pairs changed since
+    // with their Jacobian's change (bond, then 9 values row by row).
+    bool lu_current = false;
+    std::vector<std::uint8_t> lu_states;
+    std::vector<double> lu_directions;
+    std::vector<std::int64_t> lu_change_bonds;
+    std::vector<double> lu_change_values;
   };
   History history() const;
   // With the model in history.factored_states (when the factor was current) and in its
   // present supports: factorizes, replays the changes and takes the last solution back,
   // and leaves the model in `states`. The counters start again from zero.
   void rebuild(const History& history, const std::vector<PairState>& states);
+  void rebuild_lu(const History& history);
 
   const SolverCounters& counters() const { return counters_; }
   StiffnessMatrix& stiffness() { return stiffness_; }
@@ -186,6 +195,9 @@ class EquilibriumSolver {
                            std::int64_t n, int columns);
   void unsymmetric_solve(const std::vector<std::int64_t>& slipping, double* rhs,
                          std::int64_t n, int columns);
+  void factorize_unsymmetric(const std::vector<std::int64_t>& slipping, std::int64_t n);
+  std::vector<std::uint8_t> lu_factored_states_;  // pair states at the LU's factorization
+  std::vector<double> lu_factored_directions_;    // and the senses of slip (3 per bond)
   // Every stick contact off the boundary: its anchor loads the free dofs at zero free
   // displacement (update_loads).
   std::vector<std::int64_t> anchored_pairs() const;
