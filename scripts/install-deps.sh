@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
   libsundials-dev            # KINSOL (Newton) and CVODE
-  libsuitesparse-dev         # CHOLMOD sparse Cholesky (with METIS)
+  libsuitesparse-dev         # CHOLMOD sparse Cholesky (with METIS); UMFPACK LU (friction)
   libopenblas0-pthread       # fast BLAS for CHOLMOD's supernodal kernels
   libeigen3-dev
   libcgal-dev                # random lattices: Delaunay triangulations (with GMP, MPFR, Boost)

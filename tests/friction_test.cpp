@@ -34,72 +34,39 @@ struct Block {
   // Without the pusher (nodes 0 and 1, bond 0 only), node 1 also carries a sideways force
   // `sideways` (N): the block is held by friction alone.
   explicit Block(bool pusher = true, double sideways = 0) {
-    if (!pusher) {
-      build_held(sideways);
-      return;
-    }
+    const std::size_t nodes = pusher ? 3 : 2, bonds = pusher ? 2 : 1;
+    auto first = [](auto all, std::size_t count) {
+      all.resize(count);
+      return all;
+    };
     Lattice& l = model.lattice;
     l.dim = 2;
     l.spacing = 1;
     l.node_volume = 1;
     l.extent = {1, 0, 1};
-    l.positions = {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}};
-    l.face_mask.assign(3, 0);
-    l.bonds = {{0, 1, BondKind::nearest}, {1, 2, BondKind::nearest}};
-    l.bond_direction = {{0, 0, 1}, {1, 0, 0}};
-    l.bond_length = {1, 1};
-    model.normal_stiffness = {kn_c, kn2};
-    model.shear_stiffness = {ks_c, ks2};
-    model.precut = {1, 0};
-    model.bond_young = {1e9, 1e9};
-    model.bond_shear_modulus = {4e8, 4e8};
-    model.bond_sigma0 = {1e30, 1e30};  // nothing breaks
-    model.bond_tau0 = {1e30, 1e30};
-    model.node_poisson.assign(3, 0.2);
-    model.external_force = Vector::Zero(6);
-    model.external_force[3] = -P;  // node 1, z
+    l.positions = first(std::vector<Vec3>{{0, 0, 0}, {0, 0, 1}, {1, 0, 1}}, nodes);
+    l.face_mask.assign(nodes, 0);
+    l.bonds = first(std::vector<Bond>{{0, 1, BondKind::nearest}, {1, 2, BondKind::nearest}}, bonds);
+    l.bond_direction = first(std::vector<Vec3>{{0, 0, 1}, {1, 0, 0}}, bonds);
+    l.bond_length.assign(bonds, 1);
+    model.normal_stiffness = first(std::vector<double>{kn_c, kn2}, bonds);
+    model.shear_stiffness = first(std::vector<double>{ks_c, ks2}, bonds);
+    model.precut = first(std::vector<std::uint8_t>{1, 0}, bonds);
+    model.bond_young.assign(bonds, 1e9);
+    model.bond_shear_modulus.assign(bonds, 4e8);
+    model.bond_sigma0.assign(bonds, 1e30);  // nothing breaks
+    model.bond_tau0.assign(bonds, 1e30);
+    model.node_poisson.assign(nodes, 0.2);
+    model.external_force = Vector::Zero(2 * nodes);
+    model.external_force[2] = sideways;  // node 1, x
+    model.external_force[3] = -P;        // node 1, z
     DofMap dofs;
     dofs.dim = 2;
-    dofs.free_index = {-1, -1, 0, 1, -1, 2};
-    dofs.prescribed_base.assign(6, 0);
-    dofs.prescribed_rate.assign(6, 0);
-    dofs.prescribed_rate[4] = 1;  // node 2, x
-    dofs.free_count = 3;
-    ModelEditor editor(model);
-    editor.reset_states();
-    editor.set_dofs(dofs);
-    editor.set_laws(std::make_unique<SmallKinematics>(2),
-                    std::make_unique<FrictionalContactLaw>(1.0, mu));
-    editor.set_state(0, PairState::closed);
-  }
-  void build_held(double sideways) {
-    Lattice& l = model.lattice;
-    l.dim = 2;
-    l.spacing = 1;
-    l.node_volume = 1;
-    l.extent = {1, 0, 1};
-    l.positions = {{0, 0, 0}, {0, 0, 1}};
-    l.face_mask.assign(2, 0);
-    l.bonds = {{0, 1, BondKind::nearest}};
-    l.bond_direction = {{0, 0, 1}};
-    l.bond_length = {1};
-    model.normal_stiffness = {kn_c};
-    model.shear_stiffness = {ks_c};
-    model.precut = {1};
-    model.bond_young = {1e9};
-    model.bond_shear_modulus = {4e8};
-    model.bond_sigma0 = {1e30};
-    model.bond_tau0 = {1e30};
-    model.node_poisson.assign(2, 0.2);
-    model.external_force = Vector::Zero(4);
-    model.external_force[2] = sideways;
-    model.external_force[3] = -P;
-    DofMap dofs;
-    dofs.dim = 2;
-    dofs.free_index = {-1, -1, 0, 1};
-    dofs.prescribed_base.assign(4, 0);
-    dofs.prescribed_rate.assign(4, 0);
-    dofs.free_count = 2;
+    dofs.free_index = first(std::vector<std::int64_t>{-1, -1, 0, 1, -1, 2}, 2 * nodes);
+    dofs.prescribed_base.assign(2 * nodes, 0);
+    dofs.prescribed_rate.assign(2 * nodes, 0);
+    if (pusher) dofs.prescribed_rate[4] = 1;  // node 2, x
+    dofs.free_count = pusher ? 3 : 2;
     ModelEditor editor(model);
     editor.reset_states();
     editor.set_dofs(dofs);

@@ -61,7 +61,10 @@ void PairSwitchSource::take(double lambda) {
 }
 
 SwitchGuard PairSwitchSource::guard() const {
-  SwitchGuard guard{sets_lambda_, switch_at_start_, {sets_at_lambda_.begin(), sets_at_lambda_.end()}};
+  SwitchGuard guard;
+  guard.lambda = sets_lambda_;
+  guard.switch_at_start = switch_at_start_;
+  guard.sets.assign(sets_at_lambda_.begin(), sets_at_lambda_.end());
   for (const auto& [bond, lambda] : stuck_at_) {
     guard.stuck_bonds.push_back(bond);
     guard.stuck_lambdas.push_back(lambda);

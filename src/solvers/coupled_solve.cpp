@@ -166,7 +166,6 @@ void EquilibriumSolver::factorize_unsymmetric(const std::vector<std::int64_t>& s
   lu.matrix.setFromTriplets(entries.begin(), entries.end());
   if (!analysed) lu.lu.analyzePattern(lu.matrix);
   lu.lu.factorize(lu.matrix);
-  ++counters_.lu_factorizations;
   if (lu.lu.info() != Eigen::Success) {
     // Singular: a fresh factor of the symmetric part names a mechanism it has
     // (SingularStiffness); else the slipping contacts made it (woodbury_correction).

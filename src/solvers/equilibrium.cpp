@@ -33,10 +33,8 @@ void EquilibriumSolver::update_loads() {
   if (loads_current_) return;
   const Vector zero = Vector::Zero(model_.dofs().free_count);
   std::vector<std::int64_t> loaded = boundary_bonds_;
-  if (model_.has_friction()) {
-    const std::vector<std::int64_t> anchored = anchored_pairs();
-    loaded.insert(loaded.end(), anchored.begin(), anchored.end());
-  }
+  const std::vector<std::int64_t> anchored = anchored_pairs();  // none without friction
+  loaded.insert(loaded.end(), anchored.begin(), anchored.end());
   const Vector at0 = model_.internal_force(model_.full_displacement(zero, 0.0), loaded);
   const Vector at1 = model_.internal_force(model_.full_displacement(zero, 1.0), loaded);
   load0_ = model_.free_part(model_.external_force - at0);

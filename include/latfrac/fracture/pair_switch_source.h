@@ -37,7 +37,7 @@ class PairSwitchSource final : public EventSource {
   double propose(const AffinePath& path, double from, double to) override;
   void reached(double lambda) override;
   void take(double lambda) override;
-  // The window, relative to lambda (at least 1e-6 in absolute terms).
+  // The window: this times max(|lambda|, 1e-6).
   static constexpr double unstable_window = 1e-9;
   // The guard against cycling, for a checkpoint and a resume.
   SwitchGuard guard() const;

@@ -38,7 +38,6 @@ class FrictionalContactLaw final : public InteractionLaw {
   FrictionalContactLaw(double spacing, double friction)
       : friction_(friction), switch_tolerance_(1e-12 * spacing), rate_threshold_(1e-9 * spacing) {}
 
-  double friction() const { return friction_; }
   Vec3 tension(const PairSprings& pair, PairState state, const Vec3& du) const override;
   Mat3 tangent(const PairSprings& pair, PairState state, const Vec3& du) const override;
   Mat3 jacobian(const PairSprings& pair, PairState state, const Vec3& du) const override;

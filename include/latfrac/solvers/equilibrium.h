@@ -40,7 +40,6 @@ struct AffinePath {
 struct SolverCounters {
   long solves = 0;          // back-substitutions with the factor (each may hold several RHS)
   long coupled_solves = 0;  // of the solves: with slipping contacts (solve_coupled)
-  long lu_factorizations = 0;  // of those: LU factorizations of the nonsymmetric stiffness
   long factorizations = 0;  // numeric factorizations
   long factor_updates = 0;  // rank updates of the factor
   long correction_solves = 0;  // of the solves: few-entry corrections (checked_solve)
