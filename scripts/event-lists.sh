@@ -22,7 +22,11 @@ for problem in "$here"/problems/*.toml; do
       extra=(--set stepping.method=$method)
       [[ $method == fixed ]] && ! grep -q '^increment' "$problem" && extra+=(--set stepping.increment=1e-3)
       if [[ -n $contact ]]; then extra+=(--set contact.enabled=true)
-      elif grep -q "^\[contact\]" "$problem"; then extra+=(--set contact.enabled=false); fi
+      elif grep -q "^\[contact\]" "$problem"; then
+        extra+=(--set contact.enabled=false)
+        # A friction on a disabled contact is an error: take it away with the contact.
+        grep -q '^friction' "$problem" && extra+=(--set contact.friction=0)
+      fi
       # An elastic scene (no [strength]) has no events; contact needs a [strength].
       grep -q '^\[strength\]' "$problem" || { [[ -z $contact && $method == event ]] || continue; }
       dir=$(mktemp -d)
