@@ -1,9 +1,13 @@
 // Coulomb friction on closed contacts (friction_law.h): a block pressed on a plane and
 // pushed sideways, against the hand calculation; energy balance; the cycle guard; and
 // mu = 0 identical to the frictionless contact.
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <memory>
+#include <numbers>
+#include <set>
 
 #include "latfrac/base/progress.h"
 #include "latfrac/criteria/criterion.h"
@@ -157,6 +161,148 @@ TEST_CASE("Friction: a pushed block slips where |Ft| = mu Fn, sticks again on un
 
 namespace {
 
+// The 3-D block: node 0 (the plane) fixed at the origin; node 1 (the block) 1 m above it,
+// free, pressed down by P; node 2 (the pusher) 1 m from it along a horizontal d, moved
+// along d at lambda (1 m per unit lambda), its z free. Bond 0 (0-1) is a pre-cut contact (kn_c,
+// ks_c); bond 1 (1-2) a spring kn2 along d with shear stiffness ks2: with ks2 = 0 the force
+// on the block is always along d and the block drifts across d as the polygon's facet makes
+// it; at a corner of the polygon that drift is not determined (any flow in the corner's
+// normal cone balances a force along d), and ks2 > 0 makes it so.
+struct Block3 {
+  static constexpr double P = 1e6, kn_c = 1e9, ks_c = 4e8, kn2 = 2e8, mu = 0.5;
+  Model model;
+  Vec3 d;
+  Block3(int facets, double angle, double ks2 = 0) {
+    const auto [t1, t2] = FrictionalContactLaw::frame_of({0, 0, 1});
+    d = std::cos(angle) * t1 + std::sin(angle) * t2;
+    Lattice& l = model.lattice;
+    l.dim = 3;
+    l.spacing = 1;
+    l.node_volume = 1;
+    l.extent = {1, 1, 1};
+    l.positions = {{0, 0, 0}, {0, 0, 1}, Vec3(0, 0, 1) + d};
+    l.face_mask.assign(3, 0);
+    l.bonds = {{0, 1, BondKind::nearest}, {1, 2, BondKind::nearest}};
+    l.bond_direction = {{0, 0, 1}, d};
+    l.bond_length.assign(2, 1);
+    model.normal_stiffness = {kn_c, kn2};
+    model.shear_stiffness = {ks_c, ks2};
+    model.precut = {1, 0};
+    model.bond_young.assign(2, 1e9);
+    model.bond_shear_modulus.assign(2, 4e8);
+    model.bond_sigma0.assign(2, 1e30);
+    model.bond_tau0.assign(2, 1e30);
+    model.node_poisson.assign(3, 0.2);
+    model.external_force = Vector::Zero(9);
+    model.external_force[5] = -P;  // node 1, z
+    DofMap dofs;
+    dofs.dim = 3;
+    // Node 2's z is free: it carries bond 1's shear only, which so leaves Fn = P.
+    dofs.free_index = {-1, -1, -1, 0, 1, 2, -1, -1, 3};
+    dofs.prescribed_base.assign(9, 0);
+    dofs.prescribed_rate = {0, 0, 0, 0, 0, 0, d.x(), d.y(), 0};
+    dofs.free_count = 4;
+    ModelEditor editor(model);
+    editor.reset_states();
+    editor.set_dofs(dofs);
+    editor.set_laws(std::make_unique<SmallKinematics>(3),
+                    std::make_unique<FrictionalContactLaw>(1.0, mu, facets));
+    editor.set_state(0, PairState::closed);
+  }
+  Vec3 block(const Vector& u) const { return {u[3], u[4], u[5]}; }
+};
+
+}  // namespace
+
+TEST_CASE("Friction in 3-D: a block pushed across a facet of the polyhedral cone slips where "
+          "the facet says, slides along the facet's normal, and sticks on unloading",
+          "[friction]") {
+  const double mu = Block3::mu, P = Block3::P, kc = Block3::ks_c, k2 = Block3::kn2;
+  for (const int k : {4, 8, 16}) {
+    const double c = std::cos(std::numbers::pi / k);
+    // d at 0.4 of the way from facet 1's normal towards corner 2.
+    const double facet_angle = 2 * std::numbers::pi * 1.5 / k;
+    const double off = 0.4 * std::numbers::pi / k;
+    Block3 block(k, facet_angle + off);
+    Driver run(block.model, unbreakable());
+    // Stick: F = ks_c kn2 lambda / (ks_c + kn2) along d. Facet 1 (normal m, d . m =
+    // cos(off), the largest) is reached where F cos(off) = c mu P.
+    const double force = c * mu * P / std::cos(off);
+    const double onset = force * (kc + k2) / (kc * k2);
+    INFO("facets " << k);
+    run.follow(0, 0.01);
+    REQUIRE(run.switch_lambdas.size() == 1);
+    CHECK(run.switch_lambdas[0] == Approx(onset).epsilon(1e-10));
+    REQUIRE(block.model.state(0) == PairState::slip);
+    // Sliding: F stays; the block's d-displacement is lambda - F / kn2 and it slides along
+    // m, so it drifts across d by (lambda - onset) tan(off), and its slip is
+    // (lambda - onset) / cos(off); the work is F (lambda - onset).
+    const Vec3 u = block.block(run.equilibrium.displacement(0.01));
+    const Vec3 across = Vec3(0, 0, 1).cross(block.d);
+    const double moved = 0.01 - onset;
+    CHECK(u.dot(block.d) == Approx(0.01 - force / k2).epsilon(1e-10));
+    CHECK(std::abs(u.dot(across)) == Approx(moved * std::tan(off)).epsilon(1e-9));
+    CHECK(u.z() == Approx(-P / Block3::kn_c).epsilon(1e-10));
+    const ContactMemory& m = block.model.contact_memory()[0];
+    CHECK(m.slip == Approx(moved / std::cos(off)).epsilon(1e-10));
+    CHECK(m.work == Approx(force * moved).epsilon(1e-10));
+    // Unloading: it sticks at once; F = ks_c kn2 (lambda - a.d) / (ks_c + kn2), a.d =
+    // 0.01 - onset, reaches -force (the opposite facet, k even) at lambda = 0.01 - 2 onset.
+    run.switch_lambdas.clear();
+    run.follow(0.01, 0.0);
+    REQUIRE(run.switch_lambdas.size() == 2);
+    CHECK(run.switch_lambdas[0] == 0.01);
+    CHECK(run.switch_lambdas[1] == Approx(0.01 - 2 * onset).epsilon(1e-10));
+    CHECK(block.model.state(0) == PairState::slip);
+  }
+}
+
+TEST_CASE("Friction in 3-D: pushed towards a corner of the cone, a block slips at mu |Fn| "
+          "(Coulomb's circle) and slides on the edge",
+          "[friction]") {
+  const double mu = Block3::mu, P = Block3::P, kc = Block3::ks_c, k2 = Block3::kn2;
+  for (const int k : {3, 8}) {
+    Block3 block(k, 2 * std::numbers::pi * 1 / k, 1e8);  // corner 1
+    Driver run(block.model, unbreakable());
+    const double onset = mu * P * (kc + k2) / (kc * k2);
+    INFO("facets " << k);
+    run.follow(0, 0.01);
+    REQUIRE(!run.switch_lambdas.empty());
+    CHECK(run.switch_lambdas.front() == Approx(onset).epsilon(1e-10));
+    CHECK(run.switch_lambdas.back() == Approx(onset).epsilon(1e-10));
+    CHECK(block.model.state(0) == PairState::slip_edge);
+    const Vec3 u = block.block(run.equilibrium.displacement(0.01));
+    CHECK(u.dot(block.d) == Approx(0.01 - mu * P / k2).epsilon(1e-10));
+    CHECK(std::abs(u.dot(Vec3(0, 0, 1).cross(block.d))) < 1e-12);
+    const ContactMemory& m = block.model.contact_memory()[0];
+    CHECK(m.slip == Approx(0.01 - onset).epsilon(1e-10));
+    CHECK(m.work == Approx(mu * P * (0.01 - onset)).epsilon(1e-10));
+  }
+}
+
+TEST_CASE("Friction in 3-D: the polygon's onset tends to Coulomb's circle as its facets "
+          "grow, never above it",
+          "[friction]") {
+  const double mu = Block3::mu, P = Block3::P, kc = Block3::ks_c, k2 = Block3::kn2;
+  const double circle = mu * P * (kc + k2) / (kc * k2);
+  double last_error = 1;
+  for (const int k : {4, 8, 16, 32, 64}) {
+    Block3 block(k, 0.37);  // a direction tied to no facet
+    Driver run(block.model, unbreakable());
+    run.follow(0, 0.01);
+    REQUIRE(!run.switch_lambdas.empty());
+    const double error = 1 - run.switch_lambdas.front() / circle;
+    INFO("facets " << k << ": onset " << run.switch_lambdas.front() << ", circle " << circle);
+    CHECK(error >= -1e-12);
+    CHECK(error <= 1 - std::cos(std::numbers::pi / k) + 1e-12);
+    CHECK(error <= last_error);
+    last_error = error;
+  }
+  CHECK(last_error < 1.3e-3);
+}
+
+namespace {
+
 // A 12 x 8 m box (a = 1 m, no gravity) cut through by a fault dipping 53 deg, pressed by
 // its walls (loading.total < 0); nothing can break. With a small mu the hanging wall
 // slides up the fault.
@@ -169,31 +315,38 @@ Scene fault_scene(double mu, double total = -2e-3) {
   return scene;
 }
 
-// The energy stored in the springs and contacts at the full displacement u. A slipping
-// contact's tangential spring holds mu |Fn| (the force at which it slips): (mu kn dn)^2 /
-// (2 ks).
-double stored_energy(const Model& model, const Vector& u, double mu) {
+// The same in 3-D: a 12 x 4 x 8 m box cut by a plane dipping 56 deg whose strike is 25 deg
+// off the y axis, so that the hanging wall slides obliquely (y faces on rollers).
+Scene fault_scene_3d(double mu, double total = -2e-3) {
+  Scene scene = box_scene(3, 1.0, {12.0, 4.0, 8.0}, false);
+  scene.strength = strength_of(Criterion::tensile, 1e15);
+  scene.contact = Contact{true, mu};
+  const double turn = 25 * std::numbers::pi / 180, length = 7 / std::cos(turn);
+  Precut cut;
+  cut.corner = {3.1 - 0.5 * std::tan(turn) - 0.6, -0.5, -0.5};
+  cut.edge1 = {length * std::sin(turn), length * std::cos(turn), 0};
+  cut.edge2 = {6.0, 0, 9.0};
+  scene.precuts.push_back(cut);
+  scene.loading.total = total;
+  return scene;
+}
+
+// The energy stored in the springs and contacts at the full displacement u. A closed
+// contact's tangential spring holds its tangential force Ft, sticking or slipping (in
+// slip, |Ft| is where the cone stops it): |Ft|^2 / (2 ks).
+double stored_energy(const Model& model, const Vector& u) {
   double energy = 0;
   for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
     const PairSprings springs = model.springs(b);
     const Vec3 du = model.bond_displacement(u, b);
     const double dn = springs.direction.dot(du);
     const Vec3 tangential = du - dn * springs.direction;
-    switch (model.state(b)) {
-      case PairState::intact:
-        energy += 0.5 * (springs.kn * dn * dn + springs.ks * tangential.squaredNorm());
-        break;
-      case PairState::closed:
-        if (!model.contact_capable(b)) break;
-        energy += 0.5 * springs.kn * dn * dn;
-        if (springs.memory)
-          energy += 0.5 * springs.ks * (tangential - springs.memory->anchor).squaredNorm();
-        break;
-      case PairState::slip:
-        energy += 0.5 * springs.kn * dn * dn + 0.5 * std::pow(mu * springs.kn * dn, 2) / springs.ks;
-        break;
-      default:
-        break;
+    if (model.state(b) == PairState::intact) {
+      energy += 0.5 * (springs.kn * dn * dn + springs.ks * tangential.squaredNorm());
+    } else if (model.contact_capable(b) && model.state(b) != PairState::open) {
+      const Vec3 t = model.law_of(b)->tension(springs, model.state(b), du);
+      const Vec3 ft = t - springs.direction.dot(t) * springs.direction;
+      energy += 0.5 * springs.kn * dn * dn + 0.5 * ft.squaredNorm() / springs.ks;
     }
   }
   return energy;
@@ -207,9 +360,19 @@ double friction_work(const Model& model) {
 
 }  // namespace
 
-TEST_CASE("Friction: external work = stored energy + work dissipated by friction, to 1e-8",
-          "[friction]") {
-  const Scene scene = fault_scene(0.3);
+namespace {
+
+struct WorkBalance {
+  double external = 0, stored = 0, dissipated = 0;
+  int events = 0;
+  std::set<int> codes;  // the cycle codes the contacts went through (facets, edges, senses)
+  bool broke = false;
+};
+
+// Follows the scene event by event and sums the work of the external forces and the wall
+// reactions, the change of stored energy and the work dissipated by friction.
+WorkBalance energy_balance(const Scene& scene) {
+  WorkBalance balance;
   Model model = build_model(scene);
   prepare_supports(model, "");
   Driver run(model, *scene.strength);
@@ -219,7 +382,7 @@ TEST_CASE("Friction: external work = stored energy + work dissipated by friction
   // lambda (the trapezoidal rule is exact) and without breaks nothing jumps at an event.
   Vector u_last = run.equilibrium.displacement(0);
   Vector r_last = model.reactions(u_last);
-  const double stored_start = stored_energy(model, u_last, 0.3);
+  const double stored_start = stored_energy(model, u_last);
   const double work_start = friction_work(model);
   double external = 0;
   auto add_work = [&](double lambda) {
@@ -230,21 +393,50 @@ TEST_CASE("Friction: external work = stored energy + work dissipated by friction
     u_last = u;
     r_last = r;
   };
-  int events = 0;
   follow_events(run.equilibrium, {&run.breaks, &run.switches}, 0, scene.loading.total,
                 [](double) {},
                 [&](double lambda) {
                   add_work(lambda);
-                  ++events;
+                  ++balance.events;
+                  for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b)
+                    if (model.contact_capable(b))
+                      balance.codes.insert(
+                          model.law_of(b)->cycle_code(model.springs(b), model.state(b)));
                 });
   run.equilibrium.commit_contacts(scene.loading.total);
-  const double stored = stored_energy(model, u_last, 0.3) - stored_start;
-  const double dissipated = friction_work(model) - work_start;
-  INFO("events " << events << ", external " << external << " J/m, stored " << stored
-                 << ", friction " << dissipated);
-  CHECK(run.result.events.empty());
-  CHECK(dissipated > 1e-4 * external);  // the fault slid: 1e-8 of the work is 1e-4 of this
-  CHECK(external == Approx(stored + dissipated).epsilon(1e-8));
+  balance.external = external;
+  balance.stored = stored_energy(model, u_last) - stored_start;
+  balance.dissipated = friction_work(model) - work_start;
+  balance.broke = !run.result.events.empty();
+  return balance;
+}
+
+}  // namespace
+
+TEST_CASE("Friction: external work = stored energy + work dissipated by friction, to 1e-8",
+          "[friction]") {
+  const WorkBalance b = energy_balance(fault_scene(0.3));
+  INFO("events " << b.events << ", external " << b.external << " J/m, stored " << b.stored
+                 << ", friction " << b.dissipated);
+  CHECK(!b.broke);
+  CHECK(b.dissipated > 1e-4 * b.external);  // the fault slid: 1e-8 of the work is 1e-4 of this
+  CHECK(b.external == Approx(b.stored + b.dissipated).epsilon(1e-8));
+}
+
+TEST_CASE("Friction in 3-D: on an oblique fault, external work = stored energy + friction "
+          "work, to 1e-8, through facets and edges of the cone",
+          "[friction]") {
+  const WorkBalance b = energy_balance(fault_scene_3d(0.3));
+  INFO("events " << b.events << ", external " << b.external << " J, stored " << b.stored
+                 << ", friction " << b.dissipated << ", states " << b.codes.size());
+  CHECK(!b.broke);
+  CHECK(b.dissipated > 1e-4 * b.external);
+  CHECK(b.external == Approx(b.stored + b.dissipated).epsilon(1e-8));
+  // Contacts slid on more than one facet and on edges (codes 2..9 facets, 10..17 edges).
+  const int facets = std::count_if(b.codes.begin(), b.codes.end(), [](int c) { return c >= 2 && c < 10; });
+  const int edges = std::count_if(b.codes.begin(), b.codes.end(), [](int c) { return c >= 10; });
+  CHECK(facets >= 2);
+  CHECK(edges >= 1);
 }
 
 TEST_CASE("Friction: with a large mu the fault sticks and nothing is dissipated", "[friction]") {
@@ -345,3 +537,4 @@ TEST_CASE("Hard: Fig. 6 with mu = 0.6, whose contacts stick and slip back and fo
   check_same_events(a, b);
   CHECK(a.summary.friction_work == b.summary.friction_work);
 }
+

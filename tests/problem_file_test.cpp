@@ -244,6 +244,23 @@ TEST_CASE("contact.friction: a non-negative mu on an enabled contact", "[io]") {
              Contains("contact.friction: has no effect: contact.enabled is false"));
 }
 
+TEST_CASE("contact.friction_facets: 3 to 64 facets, in 3-D, with friction", "[io]") {
+  const std::string three_d =
+      with(with(minimal, "dim = 2", "dim = 3"), "size = [60e3, 30e3]", "size = [60e3, 10e3, 30e3]");
+  CHECK(parse_problem(three_d + "[contact]\nfriction = 0.6\n", "t.toml", {})
+            .contact->friction_facets == 8);
+  CHECK(parse_problem(three_d + "[contact]\nfriction = 0.6\nfriction_facets = 16\n", "t.toml", {})
+            .contact->friction_facets == 16);
+  CHECK_THAT(error_of(three_d + "[contact]\nfriction = 0.6\nfriction_facets = 2\n"),
+             Contains("contact.friction_facets: 2 is out of range"));
+  CHECK_THAT(error_of(three_d + "[contact]\nfriction = 0.6\nfriction_facets = 65\n"),
+             Contains("contact.friction_facets: 65 is out of range"));
+  CHECK_THAT(error_of(three_d + "[contact]\nfriction_facets = 8\n"),
+             Contains("contact.friction_facets: has no effect without friction"));
+  CHECK_THAT(error_of(minimal + "[contact]\nfriction = 0.6\nfriction_facets = 8\n"),
+             Contains("contact.friction_facets: has no effect in 2-D"));
+}
+
 TEST_CASE("nan and inf are rejected", "[io]") {
   CHECK(error_of(with(minimal, "spacing = 500", "spacing = nan")) ==
         "t.toml:4: lattice.spacing: must be finite, got nan; allowed: spacing > 0 (m)");

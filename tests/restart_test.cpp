@@ -134,6 +134,10 @@ TEST_CASE("a resumed run with friction gives the uninterrupted events, slip and 
   // case drifted by 2e-6 of the displacements after three stops).
   check_resumes(shipped("fig6-elliptic-graben-2d.toml",
                         {"lattice.spacing=3000", "stepping.method=event", "contact.friction=0.6"}));
+  // 3-D: contacts on facets and edges of the polyhedral cone.
+  check_resumes(shipped("reference-3d.toml",
+                        {"lattice.spacing=5000", "stepping.method=event", "contact.friction=0.6",
+                         "loading.total=0.004", "output.snapshots=[0.002, 0.004]"}));
 }
 
 TEST_CASE("a resumed 3-D run gives the uninterrupted events", "[restart]") {

@@ -8,12 +8,8 @@ namespace latfrac {
 std::string closed_pairs(const Model& model) {
   std::string closed(model.lattice.bond_count(), '\0');
   for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
-    const PairState state = model.state(b);
-    closed[b] = state == PairState::closed ? 1 : 0;
-    if (state == PairState::slip) {
-      const Vec3 t = FrictionalContactLaw::tangent_of(model.lattice.bond_direction[b]);
-      closed[b] = model.contact_memory()[b].slip_direction.dot(t) >= 0 ? 2 : 3;
-    }
+    if (!model.contact_capable(b)) continue;
+    closed[b] = static_cast<char>(model.law_of(b)->cycle_code(model.springs(b), model.state(b)));
   }
   return closed;
 }
@@ -27,9 +23,9 @@ void PairSettling::settle(double lambda) {
     std::vector<PairChange> switches;
     for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
       if (!model.contact_capable(b)) continue;
-      const PairState wanted = model.law_of(b)->settled_state(model.springs(b), model.state(b),
-                                                              model.bond_displacement(u, b));
-      if (wanted != model.state(b)) switches.push_back({b, wanted});
+      const PairTarget wanted = model.law_of(b)->settled_state(model.springs(b), model.state(b),
+                                                               model.bond_displacement(u, b));
+      if (wanted.state != model.state(b)) switches.push_back({b, wanted.state, wanted.direction});
     }
     if (switches.empty()) return;
     const bool cycling = !visited.insert(closed_pairs(model)).second;

@@ -41,9 +41,9 @@ void PairSwitchSource::reached(double lambda) {
 
 void PairSwitchSource::take(double lambda) {
   const PairState from = equilibrium_.model().state(proposed_.bond);
-  if (from == PairState::slip && proposed_.state == PairState::closed) {
+  if (slides(from) && proposed_.state == PairState::closed) {
     stuck_at_[proposed_.bond] = lambda;
-  } else if (from == PairState::closed && proposed_.state == PairState::slip) {
+  } else if (from == PairState::closed && slides(proposed_.state)) {
     const auto stuck = stuck_at_.find(proposed_.bond);
     if (stuck != stuck_at_.end() && std::abs(lambda - stuck->second) <= window(stuck->second)) {
       unstable_.insert(proposed_.bond);

@@ -176,6 +176,11 @@ std::string describe(const Scene& scene) {
               scene.contact->friction > 0
                   ? "(dimensionless: Coulomb's mu on closed contacts, stick or slip at mu |Fn|)"
                   : "(dimensionless: 0, frictionless contacts)");
+    if (scene.contact->friction > 0 && scene.lattice.dim == 3)
+      out.entry("friction_facets", static_cast<double>(scene.contact->friction_facets),
+                "(facets of the polygon inscribed in Coulomb's circle: strength between " +
+                    format_number(std::cos(std::numbers::pi / scene.contact->friction_facets)) +
+                    " mu |Fn| and mu |Fn| by direction)");
   } else {
     out.off("contact");
   }

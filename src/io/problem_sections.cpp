@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "latfrac/criteria/criterion.h"
+#include "latfrac/mechanics/friction_law.h"
 #include "problem_reader.h"
 
 namespace latfrac::problem {
@@ -253,13 +254,25 @@ void read_effects(const Section& top, Scene& scene) {
   if (const auto s = top.section("gravity", {"g"})) {
     scene.gravity = Gravity{s->number("g", non_negative("m/s^2"), 9.81)};
   }
-  if (const auto s = top.section("contact", {"enabled", "friction"})) {
+  if (const auto s = top.section("contact", {"enabled", "friction", "friction_facets"})) {
     const double friction = s->number("friction", non_negative(), 0.0);
+    const auto facets = s->integer("friction_facets", 3, FrictionalContactLaw::max_facets);
     if (s->boolean("enabled").value_or(true)) {
       scene.contact = Contact{true, friction};
     } else if (friction > 0) {
       s->fail("friction", "has no effect: contact.enabled is false (friction acts on closed contacts)",
               "allowed: contact.enabled = true, or remove friction");
+    }
+    if (facets) {
+      if (scene.lattice.dim == 2)
+        s->fail("friction_facets",
+                "has no effect in 2-D (the friction cone of a 2-D contact is exact: two senses of "
+                "slip)",
+                "allowed: friction_facets in a 3-D scene (lattice.dim = 3)");
+      if (!(friction > 0))
+        s->fail("friction_facets", "has no effect without friction (contact.friction is 0)",
+                "allowed: contact.friction > 0, or remove friction_facets");
+      scene.contact->friction_facets = static_cast<int>(*facets);
     }
   }
   if (const auto s = top.section("large_kinematics", {"enabled"})) {

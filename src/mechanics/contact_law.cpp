@@ -21,12 +21,12 @@ std::vector<RankOneTerm> ContactLaw::stiffness_terms(const PairSprings& pair,
   return {{pair.kn, pair.direction}};
 }
 
-PairState ContactLaw::settled_state(const PairSprings& pair, PairState state,
-                                    const Vec3& du) const {
+PairTarget ContactLaw::settled_state(const PairSprings& pair, PairState state,
+                                     const Vec3& du) const {
   const double dn = pair.direction.dot(du);
-  if (state == PairState::closed && dn > switch_tolerance_) return PairState::open;
-  if (state == PairState::open && dn < -switch_tolerance_) return PairState::closed;
-  return state;
+  if (state == PairState::closed && dn > switch_tolerance_) return {PairState::open};
+  if (state == PairState::open && dn < -switch_tolerance_) return {PairState::closed};
+  return {state};
 }
 
 // dn(s) = dn0 + rate s: a closed contact opens when it rises through 0, an open one

@@ -137,7 +137,8 @@ Model build_model(const Scene& scene, const FailureCriterion* criterion) {
   }
   std::unique_ptr<InteractionLaw> contact_law;
   if (scene.contact && scene.contact->friction > 0) {
-    contact_law = std::make_unique<FrictionalContactLaw>(lattice.spacing, scene.contact->friction);
+    contact_law = std::make_unique<FrictionalContactLaw>(
+        lattice.spacing, scene.contact->friction, dim == 3 ? scene.contact->friction_facets : 0);
   } else if (scene.contact) {
     contact_law = std::make_unique<ContactLaw>(lattice.spacing);
   }

@@ -112,8 +112,6 @@ std::vector<std::string> unsupported_effects(const Scene& scene) {
         "[strength] section, with a strength that cannot be reached if nothing should break)");
   }
   if (scene.contact && scene.contact->friction > 0) {
-    if (scene.lattice.dim == 3)
-      missing.push_back("contact.friction in 3-D (friction is 2-D in this version; docs/model.md)");
     if (scene.large_kinematics)
       missing.push_back("contact.friction with large_kinematics (friction needs affine paths)");
     if (scene.solver.method == EquilibriumMethod::relaxation)

@@ -18,7 +18,7 @@ void EquilibriumSolver::solve_coupled(double* rhs, std::int64_t n, int columns) 
   std::vector<std::int64_t> slipping;
   if (model_.has_friction()) {
     for (std::int64_t b = 0; b < model_.lattice.bond_count(); ++b)
-      if (model_.state(b) == PairState::slip && model_.contact_capable(b)) slipping.push_back(b);
+      if (slides(model_.state(b)) && model_.contact_capable(b)) slipping.push_back(b);
   }
   if (slipping.size() > woodbury_limit) {
     ++counters_.coupled_solves;
@@ -61,7 +61,7 @@ void EquilibriumSolver::woodbury_correction(const std::vector<std::int64_t>& sli
     const std::int64_t bond = slipping[c];
     CholeskyFactor::Column u;
     for (const CouplingTerm& term :
-         model_.law_of(bond)->coupling_terms(model_.springs(bond), PairState::slip)) {
+         model_.law_of(bond)->coupling_terms(model_.springs(bond), model_.state(bond))) {
       append_on_bond(bond, term.weight * term.left, u);
       append_on_bond(bond, term.right, v[c]);
     }
@@ -152,7 +152,7 @@ void EquilibriumSolver::factorize_unsymmetric(const std::vector<std::int64_t>& s
   }
   for (std::int64_t bond : slipping) {
     for (const CouplingTerm& term :
-         model_.law_of(bond)->coupling_terms(model_.springs(bond), PairState::slip)) {
+         model_.law_of(bond)->coupling_terms(model_.springs(bond), model_.state(bond))) {
       CholeskyFactor::Column left, right;
       append_on_bond(bond, term.weight * term.left, left);
       append_on_bond(bond, term.right, right);

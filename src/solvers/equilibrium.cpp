@@ -21,7 +21,7 @@ std::vector<std::int64_t> EquilibriumSolver::anchored_pairs() const {
   std::vector<std::int64_t> pairs;
   if (!model_.has_friction()) return pairs;
   for (std::int64_t b = 0; b < model_.lattice.bond_count(); ++b) {
-    if (!on_boundary_[b] && model_.state(b) == PairState::closed && model_.contact_capable(b))
+    if (!on_boundary_[b] && model_.contact_capable(b) && model_.law_of(b)->anchored(model_.state(b)))
       pairs.push_back(b);
   }
   return pairs;
@@ -141,7 +141,7 @@ void EquilibriumSolver::rebuild_lu(const History& history) {
     m.slip_direction = Vec3(history.lu_directions[3 * b], history.lu_directions[3 * b + 1],
                             history.lu_directions[3 * b + 2]);
     editor_.set_memory(bond, m);
-    if (model_.state(bond) == PairState::slip && model_.contact_capable(bond))
+    if (slides(model_.state(bond)) && model_.contact_capable(bond))
       slipping.push_back(bond);
   }
   factorize_unsymmetric(slipping, model_.dofs().free_count);
@@ -276,11 +276,12 @@ void EquilibriumSolver::set_pair_state(std::int64_t bond, PairState state) {
 
 void EquilibriumSolver::set_contact_memory(std::int64_t bond, const ContactMemory& memory) {
   const ContactMemory& old = model_.contact_memory()[bond];
-  if (model_.state(bond) == PairState::closed && old.anchor != memory.anchor) {
+  const InteractionLaw* law = model_.law_of(bond);
+  if (law && law->anchored(model_.state(bond)) && old.anchor != memory.anchor) {
     loads_current_ = false;
     last_solution_valid_ = false;
   }
-  if (model_.state(bond) == PairState::slip && old.slip_direction != memory.slip_direction) {
+  if (slides(model_.state(bond)) && old.slip_direction != memory.slip_direction) {
     last_solution_valid_ = false;
     const Mat3 before = lu_current_ ? pair_jacobian(bond) : Mat3::Zero();
     editor_.set_memory(bond, memory);

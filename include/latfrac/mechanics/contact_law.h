@@ -27,7 +27,7 @@ class ContactLaw final : public InteractionLaw {
   std::vector<RankOneTerm> stiffness_terms(const PairSprings& pair, PairState state) const override;
   bool is_linear() const override { return true; }
 
-  PairState settled_state(const PairSprings& pair, PairState state, const Vec3& du) const override;
+  PairTarget settled_state(const PairSprings& pair, PairState state, const Vec3& du) const override;
   PairSwitch next_switch(const PairSprings& pair, PairState state, const Vec3& du0,
                          const Vec3& du1, double from, double to, bool at_from) const override;
 

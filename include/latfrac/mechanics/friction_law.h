@@ -1,8 +1,8 @@
-// The contact a broken bond leaves, with Coulomb friction (2-D): a compression-only normal
+// The contact a broken bond leaves, with Coulomb friction: a compression-only normal
 // spring kn, and a tangential spring ks that sticks until its force reaches mu |Fn|, then
 // slides.
 //
-// States (pair_state.h), with dn = n0 . du, the tangent t = n0 turned by 90 degrees in the
+// 2-D. States (pair_state.h), with dn = n0 . du, the tangent t = n0 turned by 90 degrees in the
 // lattice's plane, and the pair's memory (ContactMemory: anchor a, sense of slip s):
 //   open:   nothing acts.
 //   closed: sticks: t_force = kn dn n0 + ks (P du - a), P = I - n0 n0' (a linear law with
@@ -24,9 +24,38 @@
 // At a fixed lambda (settling) the same rules with a tolerance: a closed contact whose
 // force exceeds the cone by more than kn 1e-12 a slips; a slipping one whose anchor went
 // back by more than 1e-12 a (kn / ks) since the last commit sticks. The small numbers
-// are the frictionless contact's (contact_law.h). Friction is 2-D only in this version
-// (docs/model.md, friction: why, and what 3-D needs).
+// are the frictionless contact's (contact_law.h).
+//
+// In 3-D the tangential plane has two directions and Coulomb's circular cone would turn
+// the slip direction along the path. The law replaces the circle by a regular polygon of
+// k facets inscribed in it (its corners on the circle; k = [contact] friction_facets),
+// which keeps every path affine (docs/model.md, friction in 3-D). With an orthonormal
+// frame (t1, t2) of the tangential plane fixed by n0 (frame_of), corner i is
+// w_i = cos(2 pi i/k) t1 + sin(2 pi i/k) t2, facet i lies between corners i and i + 1
+// with outward normal m_i (at angle 2 pi (i + 1/2)/k) and its limit is
+// m_i . Ft <= c mu kn (-dn), c = cos(pi/k). The memory's slip_direction s is the
+// tangential force per unit mu kn (-dn): c m_i on facet i, w_i on edge i.
+//   closed:    sticks: t_force = kn dn n0 + ks (P du - a).
+//   slip:      on facet i: t_force = kn dn n0 + mu kn (-dn) s + ks e e' (du - a), e the
+//              facet's direction (n0 x m_i): along the facet the contact still sticks.
+//              The factor holds the stick stiffness kn n0 n0' + ks P; the rest,
+//              -m_i (ks m_i + c mu kn n0)', is one coupling term.
+//   slip_edge: on edge i: t_force = kn dn n0 + mu kn (-dn) w_i (factor: kn n0 n0').
+// Switches (all affine in lambda):
+//   closed -> slip (facet j)    where ks m_j . (du - a) + c mu kn dn rises through 0;
+//   slip -> slip_edge           where the force, sliding along facet i, reaches an
+//                               adjacent facet's limit;
+//   slip -> closed              where the slip rate ks m_i . du' + c mu kn dn' < 0
+//                               (only at a path's start, as in 2-D);
+//   slip_edge -> slip or closed where the slip rate P du' + mu kn dn' w_i / ks, written
+//                               as g_p m_p + g_q m_q on the edge's two facets, has a
+//                               negative part (at a path's start): the contact leaves the
+//                               facet whose part is negative, or sticks if both are;
+//   any -> open                 where dn rises through 0.
 #pragma once
+
+#include <cstdint>
+#include <utility>
 
 #include "latfrac/mechanics/interaction_law.h"
 
@@ -34,9 +63,9 @@ namespace latfrac {
 
 class FrictionalContactLaw final : public InteractionLaw {
  public:
-  // spacing: the lattice spacing a, m; friction: mu, dimensionless (> 0).
-  FrictionalContactLaw(double spacing, double friction)
-      : friction_(friction), switch_tolerance_(1e-12 * spacing), rate_threshold_(1e-9 * spacing) {}
+  // spacing: the lattice spacing a, m; friction: mu, dimensionless (> 0); facets: 0 for a
+  // 2-D lattice, k >= 3 (the polygon's facets) for a 3-D one.
+  FrictionalContactLaw(double spacing, double friction, int facets = 0);
 
   Vec3 tension(const PairSprings& pair, PairState state, const Vec3& du) const override;
   Mat3 tangent(const PairSprings& pair, PairState state, const Vec3& du) const override;
@@ -45,7 +74,11 @@ class FrictionalContactLaw final : public InteractionLaw {
   std::vector<CouplingTerm> coupling_terms(const PairSprings& pair, PairState state) const override;
   bool is_linear() const override { return true; }
 
-  PairState settled_state(const PairSprings& pair, PairState state, const Vec3& du) const override;
+  PairTarget settled_state(const PairSprings& pair, PairState state, const Vec3& du) const override;
+  bool anchored(PairState state) const override {
+    return state == PairState::closed || (facets_ > 0 && state == PairState::slip);
+  }
+  std::uint8_t cycle_code(const PairSprings& pair, PairState state) const override;
   PairSwitch next_switch(const PairSprings& pair, PairState state, const Vec3& du0,
                          const Vec3& du1, double from, double to, bool at_from) const override;
 
@@ -56,9 +89,31 @@ class FrictionalContactLaw final : public InteractionLaw {
 
   // The in-plane tangent of a pair (n0 turned by 90 degrees in the x-z plane).
   static Vec3 tangent_of(const Vec3& direction) { return {-direction.z(), 0, direction.x()}; }
+  // 3-D: the tangential frame (t1, t2) of a pair, with t1 x t2 = n0.
+  static std::pair<Vec3, Vec3> frame_of(const Vec3& direction);
+  int facets() const { return facets_; }
+  static constexpr int max_facets = 64;
 
  private:
+  // 3-D: corner i and facet i's outward normal (indices taken modulo k).
+  Vec3 corner(const Vec3& n, int i) const;
+  Vec3 facet_normal(const Vec3& n, int i) const;
+  // 3-D: the facet (slip) or corner (slip_edge) that a slip direction s names.
+  int index_of(const Vec3& n, const Vec3& s, bool edge) const;
+  // 3-D: the tangential force in a sliding state.
+  Vec3 sliding_force(const PairSprings& pair, PairState state, const Vec3& du) const;
+  // 3-D: parts (g_p, g_q) of a tangential vector x on facets p = i - 1 and q = i, the two
+  // facets that meet at corner i.
+  std::pair<double, double> on_edge_facets(const Vec3& n, int i, const Vec3& x) const;
+  PairTarget settled_3d(const PairSprings& pair, PairState state, const Vec3& du) const;
+  ContactMemory entered_3d(const PairSprings& pair, PairState from, PairState to, const Vec3& du,
+                           const Vec3& direction) const;
+  PairSwitch next_switch_3d(const PairSprings& pair, PairState state, const Vec3& du0,
+                            const Vec3& du1, double from, double to, bool at_from) const;
+
   double friction_;
+  int facets_;
+  double cos_half_;    // c = cos(pi / k)
   double switch_tolerance_;  // m
   double rate_threshold_;    // m per unit lambda
 };

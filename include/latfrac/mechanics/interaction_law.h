@@ -59,6 +59,13 @@ struct CouplingTerm {
   Vec3 left, right;
 };
 
+// The state a pair should be in (settling), and for a frictional contact entering slip the
+// sense of sliding (zero: the law picks it from the force, entered()).
+struct PairTarget {
+  PairState state;
+  Vec3 direction = Vec3::Zero();
+};
+
 // Where a pair switches on an affine path: at s, into `to` (into slip: along `direction`).
 struct PairSwitch {
   double s = std::numeric_limits<double>::infinity();  // +inf: no switch before the end
@@ -105,8 +112,16 @@ class InteractionLaw {
   }
 
   // The state the pair should be in at du: its own when the state is consistent.
-  virtual PairState settled_state(const PairSprings&, PairState state, const Vec3&) const {
-    return state;
+  virtual PairTarget settled_state(const PairSprings&, PairState state, const Vec3&) const {
+    return {state};
+  }
+  // Whether the pair's force in `state` has a constant part (a stick anchor): the solver
+  // takes it as a load (solvers/equilibrium.h).
+  virtual bool anchored(PairState) const { return false; }
+  // A small code for the pair's state, telling apart what the settling's cycle rule must
+  // (pair_settling.h): 0 open or intact, 1 closed, 2 and up a sense or facet of slip.
+  virtual std::uint8_t cycle_code(const PairSprings&, PairState state) const {
+    return state == PairState::closed ? 1 : 0;
   }
   // On du(s) = du0 + s du1: the first s in (from, to] where the state changes; `at_from`
   // also allows s = from, for a pair already at or past its switch and moving on (a tie

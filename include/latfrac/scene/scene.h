@@ -42,6 +42,8 @@ struct Loading {
 struct Contact {
   bool enabled = true;
   double friction = 0;  // Coulomb's mu on closed contacts (0: frictionless), dimensionless
+  // 3-D: the facets of the polygon inscribed in Coulomb's circle (friction_law.h).
+  int friction_facets = 8;
 };
 
 // A horizontal layer z_min <= z < z_max with its own material and strength; a bond
