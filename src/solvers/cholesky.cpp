@@ -146,6 +146,7 @@ CholeskyFactor::~CholeskyFactor() {
 bool CholeskyFactor::analyzed() const { return state_->symbolic != nullptr; }
 
 void CholeskyFactor::analyze(StiffnessMatrix& matrix, const std::vector<std::int64_t>& given) {
+  ++version_;
   cholmod_common& c = state_->common;
   cholmod_l_free_factor(&state_->factor, &c);
   cholmod_l_free_factor(&state_->symbolic, &c);
@@ -175,6 +176,7 @@ std::vector<std::int64_t> CholeskyFactor::elimination_order() const {
 }
 
 void CholeskyFactor::factorize(StiffnessMatrix& matrix) {
+  ++version_;
   if (!analyzed()) analyze(matrix);
   cholmod_common& c = state_->common;
   cholmod_sparse a = view_of(matrix);
@@ -308,6 +310,7 @@ void CholeskyFactor::solve(double* rhs, std::int64_t rows, int columns) {
 }
 
 void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
+  ++version_;
   if (!factorized_) throw Error("CholeskyFactor::update called before a successful factorization");
   if (columns.empty()) return;
   cholmod_common& c = state_->common;

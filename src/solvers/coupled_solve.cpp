@@ -55,20 +55,35 @@ struct Coupling {
 void EquilibriumSolver::woodbury_correction(const std::vector<std::int64_t>& slipping,
                                             double* rhs, std::int64_t n, int columns) {
   const auto k = static_cast<Eigen::Index>(slipping.size());
-  Eigen::MatrixXd w = Eigen::MatrixXd::Zero(n, k);
-  std::vector<CholeskyFactor::Column> v(k);
-  for (Eigen::Index c = 0; c < k; ++c) {
-    const std::int64_t bond = slipping[c];
-    CholeskyFactor::Column u;
-    for (const CouplingTerm& term :
-         model_.law_of(bond)->coupling_terms(model_.springs(bond), model_.state(bond))) {
-      append_on_bond(bond, term.weight * term.left, u);
-      append_on_bond(bond, term.right, v[c]);
+  std::vector<double> terms;
+  for (const std::int64_t bond : slipping)
+    for (const CouplingTerm& t :
+         model_.law_of(bond)->coupling_terms(model_.springs(bond), model_.state(bond)))
+      terms.insert(terms.end(), {t.weight, t.left.x(), t.left.y(), t.left.z(), t.right.x(),
+                                 t.right.y(), t.right.z()});
+  WoodburyCache& cache = woodbury_;
+  if (!(cache.valid && cache.factor_version == factor_.version() && cache.w.rows() == n &&
+        cache.bonds == slipping && cache.terms == terms)) {
+    cache.w = Eigen::MatrixXd::Zero(n, k);
+    cache.v.assign(static_cast<std::size_t>(k), {});
+    for (Eigen::Index c = 0; c < k; ++c) {
+      const std::int64_t bond = slipping[c];
+      CholeskyFactor::Column u;
+      for (const CouplingTerm& term :
+           model_.law_of(bond)->coupling_terms(model_.springs(bond), model_.state(bond))) {
+        append_on_bond(bond, term.weight * term.left, u);
+        append_on_bond(bond, term.right, cache.v[c]);
+      }
+      for (const auto& [row, value] : u) cache.w(row, c) += value;
     }
-    for (const auto& [row, value] : u) w(row, c) += value;
+    factor_.solve(cache.w.data(), n, static_cast<int>(k));
+    cache.capacitance = Coupling{cache.w, cache.v}.capacitance().partialPivLu();
+    cache.bonds = slipping;
+    cache.terms = std::move(terms);
+    cache.factor_version = factor_.version();
+    cache.valid = true;
   }
-  factor_.solve(w.data(), n, static_cast<int>(k));
-  const Coupling coupling{w, v};
+  const Coupling coupling{cache.w, cache.v};
   if (rhs == nullptr) {
     // The LU found K singular while A is not: (I + V' W) y = 0 gives K (W y) = 0, a motion
     // that the slipping contacts leave free. Its largest unknown is held (the rule for
@@ -82,7 +97,7 @@ void EquilibriumSolver::woodbury_correction(const std::vector<std::int64_t>& sli
                             largest);
   }
   Eigen::Map<Eigen::MatrixXd> x(rhs, n, columns);
-  x -= coupling.w * coupling.capacitance().partialPivLu().solve(coupling.v_times(x));
+  x -= coupling.w * cache.capacitance.solve(coupling.v_times(x));
 }
 
 // K = the symmetric stiffness (both triangles, assembled afresh: the factor has been

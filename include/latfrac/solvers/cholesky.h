@@ -97,7 +97,12 @@ class CholeskyFactor {
   bool factorized() const { return factorized_; }
   std::int64_t factor_nonzeros() const;
 
+  // Changes with every analysis, factorization and update: a caller may keep solves with
+  // this factor (A^-1 U) while it stays the same.
+  std::uint64_t version() const { return version_; }
+
  private:
+  std::uint64_t version_ = 0;
   struct State;
   std::int64_t smallest_pivot_column() const;
   WeakestPivot weakest_;

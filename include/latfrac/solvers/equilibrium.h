@@ -11,6 +11,7 @@
 // the unit-extension right-hand sides together.
 #pragma once
 
+#include <Eigen/LU>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -192,6 +193,19 @@ class EquilibriumSolver {
   void note_lu_change(std::int64_t bond, const Mat3& before);
   void woodbury_correction(const std::vector<std::int64_t>& slipping, double* rhs,
                            std::int64_t n, int columns);
+  // The Woodbury correction's W = A^-1 U, V and the LU of I + V' W, kept while the factor
+  // (its version) and the slipping contacts' coupling terms stay the same: a run solves
+  // several times between two changes (the check, the path's two columns, the settling).
+  struct WoodburyCache {
+    std::uint64_t factor_version = 0;
+    std::vector<std::int64_t> bonds;
+    std::vector<double> terms;  // each contact's coupling terms, flattened
+    Eigen::MatrixXd w;
+    std::vector<CholeskyFactor::Column> v;
+    Eigen::PartialPivLU<Eigen::MatrixXd> capacitance;
+    bool valid = false;
+  };
+  WoodburyCache woodbury_;
   void unsymmetric_solve(const std::vector<std::int64_t>& slipping, double* rhs,
                          std::int64_t n, int columns);
   void factorize_unsymmetric(const std::vector<std::int64_t>& slipping, std::int64_t n);
