@@ -20,13 +20,10 @@
 #include <string>
 #include <vector>
 
-#include "latfrac/base/progress.h"
-#include "latfrac/criteria/criterion.h"
-#include "latfrac/fracture/fracture_run.h"
-#include "latfrac/fracture/initial_supports.h"
 #include "latfrac/io/problem_file.h"
 #include "latfrac/scene/model_builder.h"
 #include "latfrac/scene/run.h"
+#include "scenes.h"  // tests/: run_model, which can follow the integrated path
 
 using namespace latfrac;
 
@@ -71,16 +68,8 @@ void three_d(const std::string& total, const std::string& spacing) {
     set.push_back("contact.enabled=false");
     const Scene scene = read_problem_file(block, set);
     Model model = build_model(scene);
-    prepare_supports(model, scene.source_path);
-    EquilibriumSolver solver(model, scene.solver);
-    ProgressLine progress(false);
-    RunResult result;
-    FractureRun fracture(model, make_criterion(*scene.strength, scene.lattice.dim),
-                         scene.strength->bond_stress, schedule_of(scene), scene.solver, solver,
-                         progress, result);
-    fracture.use_integrated_path(integrated);
     const auto start = std::chrono::steady_clock::now();
-    fracture.run();
+    const RunResult result = testing::run_model(model, scene, integrated);
     const double wall = seconds_since(start);
     std::vector<std::int64_t> bonds;
     for (const auto& e : result.events)

@@ -23,6 +23,18 @@ Vec3 tangential(const PairSprings& pair, const Vec3& du) {
   return du - pair.direction.dot(du) * pair.direction;
 }
 
+// A switch function g(s) = g0 + rate s on [from, to]: where it rises through 0 (or at
+// `from`, for one already at or past 0 that moves on at more than `threshold`, when
+// at_from allows), if before the first switch found so far.
+void consider_switch(PairSwitch& first, double g0, double rate, double threshold, PairState into,
+                     const Vec3& direction, double from, double to, bool at_from) {
+  if (!(rate > 0)) return;
+  const bool past = g0 + rate * from >= 0;
+  if (past && (!at_from || rate <= threshold)) return;
+  const double s = past ? from : -g0 / rate;
+  if ((past || s > from) && s <= to && s < first.s) first = {s, into, direction};
+}
+
 }  // namespace
 
 FrictionalContactLaw::FrictionalContactLaw(double spacing, double friction, int facets)
@@ -174,11 +186,7 @@ PairSwitch FrictionalContactLaw::next_switch(const PairSprings& pair, PairState 
   if (facets_ > 0) return next_switch_3d(pair, state, du0, du1, from, to, at_from);
   PairSwitch first;
   auto consider = [&](double g0, double rate, double threshold, PairState into, const Vec3& d) {
-    if (!(rate > 0)) return;
-    const bool past = g0 + rate * from >= 0;
-    if (past && (!at_from || rate <= threshold)) return;
-    const double s = past ? from : -g0 / rate;
-    if ((past || s > from) && s <= to && s < first.s) first = {s, into, d};
+    consider_switch(first, g0, rate, threshold, into, d, from, to, at_from);
   };
   const Vec3& n = pair.direction;
   const double dn0 = n.dot(du0), dn1 = n.dot(du1);
@@ -313,11 +321,7 @@ PairSwitch FrictionalContactLaw::next_switch_3d(const PairSprings& pair, PairSta
                                                 double to, bool at_from) const {
   PairSwitch first;
   auto consider = [&](double g0, double rate, double threshold, PairState into, const Vec3& d) {
-    if (!(rate > 0)) return;
-    const bool past = g0 + rate * from >= 0;
-    if (past && (!at_from || rate <= threshold)) return;
-    const double s = past ? from : -g0 / rate;
-    if ((past || s > from) && s <= to && s < first.s) first = {s, into, d};
+    consider_switch(first, g0, rate, threshold, into, d, from, to, at_from);
   };
   auto at_start = [&](PairState into, const Vec3& d) {
     if (at_from && from < first.s) first = {from, into, d};
