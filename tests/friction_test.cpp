@@ -463,6 +463,22 @@ TEST_CASE("Friction: fixed-step runs converge to the event-driven run as ds shri
   CHECK(errors[1] < 1e-2);
 }
 
+TEST_CASE("Friction in 3-D: fixed-step runs converge to the event-driven run as ds shrinks",
+          "[friction]") {
+  Scene scene = fault_scene_3d(0.3);
+  const RunResult exact = run_scene(scene, quiet());
+  std::vector<double> errors;
+  for (const double ds : {2e-4, 2e-5}) {
+    scene.stepping = {SteppingMethod::fixed, ds};
+    const RunResult fixed = run_scene(scene, quiet());
+    errors.push_back(std::abs(fixed.summary.friction_work / exact.summary.friction_work - 1));
+  }
+  INFO("relative error of the friction work at ds 2e-4, 2e-5: " << errors[0] << ", " << errors[1]);
+  CHECK(exact.summary.friction_work > 0);
+  CHECK(errors[1] < 0.5 * errors[0]);
+  CHECK(errors[1] < 1e-2);
+}
+
 TEST_CASE("Friction: a frictional contact with mu = 0 breaks the same bonds as the "
           "frictionless one",
           "[friction]") {

@@ -98,10 +98,16 @@ signals:*)
 refuse-changed)
   cp "$problem" "$work/problem.toml" && problem=$work/problem.toml
   h5=$work/stopped/$name.h5
-  start_run "$work/stopped"
-  wait_for_file "$h5"
-  kill -s TERM "$run_pid"; wait "$run_pid"
-  [[ $? == 3 ]] || { fail "the run did not stop cleanly"; exit 1; }
+  # A short run can finish before the signal lands (status 0, seen under load): run again.
+  for _ in 1 2 3 4 5; do
+    rm -rf -- "$work/stopped"
+    start_run "$work/stopped"
+    wait_for_file "$h5"
+    kill -s TERM "$run_pid"; wait "$run_pid"
+    status=$?
+    [[ $status == 0 ]] || break
+  done
+  [[ $status == 3 ]] || { fail "the run did not stop cleanly: status $status, $(cat "$work/stopped.err")"; exit 1; }
   sed -i '1i # an edit after the run started' "$problem"
   "$latfrac" run --resume "$h5" --quiet > /dev/null 2> "$work/refused.err"
   status=$?
