@@ -48,21 +48,18 @@ void check(PetscErrorCode code, const char* what) {
 }
 
 // The full symmetric matrix from latfrac's upper triangle (CSC), as rows.
-struct Rows {
-  std::vector<std::vector<std::pair<PetscInt, double>>> entries;
-};
+using Rows = std::vector<std::vector<std::pair<PetscInt, double>>>;
 
 Rows rows_of(StiffnessMatrix& k) {
-  Rows rows;
-  rows.entries.resize(static_cast<std::size_t>(k.size()));
+  Rows rows(static_cast<std::size_t>(k.size()));
   const auto& start = k.column_start();
   const auto& row = k.row_index();
   const auto& value = k.values();
   for (std::int64_t j = 0; j < k.size(); ++j) {
     for (std::int64_t p = start[j]; p < start[j + 1]; ++p) {
       if (value[p] == 0) continue;
-      rows.entries[row[p]].push_back({static_cast<PetscInt>(j), value[p]});
-      if (row[p] != j) rows.entries[j].push_back({static_cast<PetscInt>(row[p]), value[p]});
+      rows[row[p]].push_back({static_cast<PetscInt>(j), value[p]});
+      if (row[p] != j) rows[j].push_back({static_cast<PetscInt>(row[p]), value[p]});
     }
   }
   return rows;
@@ -70,10 +67,10 @@ Rows rows_of(StiffnessMatrix& k) {
 
 // An AIJ matrix (sequential on one rank, MPI on more) holding this rank's block of rows.
 Mat petsc_matrix(const Rows& rows, PetscInt first, PetscInt last) {
-  const auto n = static_cast<PetscInt>(rows.entries.size());
+  const auto n = static_cast<PetscInt>(rows.size());
   std::vector<PetscInt> diagonal(last - first), off(last - first);
   for (PetscInt i = first; i < last; ++i)
-    for (const auto& [c, v] : rows.entries[i]) ++((c >= first && c < last) ? diagonal : off)[i - first];
+    for (const auto& [c, v] : rows[i]) ++((c >= first && c < last) ? diagonal : off)[i - first];
   Mat a;
   check(MatCreate(PETSC_COMM_WORLD, &a), "MatCreate");
   check(MatSetSizes(a, last - first, last - first, n, n), "MatSetSizes");
@@ -85,7 +82,7 @@ Mat petsc_matrix(const Rows& rows, PetscInt first, PetscInt last) {
   for (PetscInt i = first; i < last; ++i) {
     columns.clear();
     values.clear();
-    for (const auto& [c, v] : rows.entries[i]) {
+    for (const auto& [c, v] : rows[i]) {
       columns.push_back(c);
       values.push_back(v);
     }
@@ -204,7 +201,7 @@ int main(int argc, char** argv) {
   const Vector zero = Vector::Zero(model.dofs().dof_count());
   stiffness.assemble(model, zero);
   const Rows k0_rows = rows_of(stiffness);
-  const auto n = static_cast<PetscInt>(k0_rows.entries.size());
+  const auto n = static_cast<PetscInt>(k0_rows.size());
   const PetscInt first = n * rank / ranks, last = n * (rank + 1) / ranks;
 
   // The bonds to remove: those crossing x = 30 km, uppermost first.

@@ -45,6 +45,11 @@ FrictionalContactLaw::FrictionalContactLaw(double spacing, double friction, int 
       rate_threshold_(1e-9 * spacing) {
   if (facets != 0 && (facets < 3 || facets > max_facets))
     throw Error("friction_facets must be from 3 to " + std::to_string(max_facets));
+  // Half steps pi h / k: corner i at h = 2i, facet i's normal at h = 2i + 1.
+  for (int h = 0; h < 2 * facets; ++h) {
+    const double angle = std::numbers::pi * h / facets;
+    half_steps_.push_back({std::cos(angle), std::sin(angle)});
+  }
 }
 
 // t1 lies in the horizontal plane unless n0 is near the vertical (then t1 is normal to
@@ -55,20 +60,24 @@ std::pair<Vec3, Vec3> FrictionalContactLaw::frame_of(const Vec3& n) {
   return {t1, n.cross(t1)};
 }
 
-Vec3 FrictionalContactLaw::corner(const Vec3& n, int i) const {
-  const auto [t1, t2] = frame_of(n);
-  const double angle = 2 * std::numbers::pi * i / facets_;
-  return std::cos(angle) * t1 + std::sin(angle) * t2;
+Vec3 FrictionalContactLaw::half_step(const Frame& frame, int h) const {
+  const auto& [c, s] = half_steps_[static_cast<std::size_t>(((h % (2 * facets_)) + 2 * facets_) %
+                                                            (2 * facets_))];
+  return c * frame.first + s * frame.second;
 }
 
-Vec3 FrictionalContactLaw::facet_normal(const Vec3& n, int i) const {
-  const auto [t1, t2] = frame_of(n);
-  const double angle = 2 * std::numbers::pi * (i + 0.5) / facets_;
-  return std::cos(angle) * t1 + std::sin(angle) * t2;
+int FrictionalContactLaw::pressed_facet(const Frame& frame, const Vec3& x) const {
+  int best = 0;
+  double most = -std::numeric_limits<double>::infinity();
+  for (int j = 0; j < facets_; ++j) {
+    const double g = facet_normal(frame, j).dot(x);
+    if (g > most) most = g, best = j;
+  }
+  return best;
 }
 
-int FrictionalContactLaw::index_of(const Vec3& n, const Vec3& s, bool edge) const {
-  const auto [t1, t2] = frame_of(n);
+int FrictionalContactLaw::index_of(const Frame& frame, const Vec3& s, bool edge) const {
+  const auto& [t1, t2] = frame;
   const double turns = std::atan2(s.dot(t2), s.dot(t1)) / (2 * std::numbers::pi) * facets_;
   const long i = std::lround(edge ? turns : turns - 0.5);
   return static_cast<int>(((i % facets_) + facets_) % facets_);
@@ -84,9 +93,9 @@ Vec3 FrictionalContactLaw::sliding_force(const PairSprings& pair, PairState stat
   return force + pair.ks * e.dot(du - m.anchor) * e;
 }
 
-std::pair<double, double> FrictionalContactLaw::on_edge_facets(const Vec3& n, int i,
+std::pair<double, double> FrictionalContactLaw::on_edge_facets(const Frame& frame, int i,
                                                                const Vec3& x) const {
-  const Vec3 mp = facet_normal(n, i - 1), mq = facet_normal(n, i);
+  const Vec3 mp = facet_normal(frame, i - 1), mq = facet_normal(frame, i);
   const double b = mp.dot(mq), xp = mp.dot(x), xq = mq.dot(x);
   const double det = 1 - b * b;
   return {(xp - b * xq) / det, (xq - b * xp) / det};
@@ -97,7 +106,7 @@ std::uint8_t FrictionalContactLaw::cycle_code(const PairSprings& pair, PairState
   if (!slides(state)) return 0;
   const ContactMemory& m = memory_of(pair);
   if (facets_ == 0) return m.slip_direction.dot(tangent_of(pair.direction)) >= 0 ? 2 : 3;
-  const int i = index_of(pair.direction, m.slip_direction, state == PairState::slip_edge);
+  const int i = index_of(frame_of(pair.direction), m.slip_direction, state == PairState::slip_edge);
   return static_cast<std::uint8_t>(2 + i + (state == PairState::slip_edge ? facets_ : 0));
 }
 
@@ -284,35 +293,32 @@ PairTarget FrictionalContactLaw::settled_3d(const PairSprings& pair, PairState s
   if (!(state == PairState::closed || slides(state))) return {state};
   if (dn > switch_tolerance_) return {PairState::open};
   if (pair.ks <= 0) return {state};
+  const Frame f = frame_of(n);
   if (state == PairState::closed) {
-    int best = 0;
-    double most = -std::numeric_limits<double>::infinity();
-    for (int j = 0; j < facets_; ++j) {
-      const double g = pair.ks * facet_normal(n, j).dot(du - m.anchor) - limit;
-      if (g > most) most = g, best = j;
-    }
-    if (most > force_tolerance) return {PairState::slip, cos_half_ * facet_normal(n, best)};
+    const Vec3 mj = facet_normal(f, pressed_facet(f, du - m.anchor));
+    if (pair.ks * mj.dot(du - m.anchor) - limit > force_tolerance)
+      return {PairState::slip, cos_half_ * mj};
     return {state};
   }
   if (state == PairState::slip) {
-    const int i = index_of(n, m.slip_direction, false);
-    if (pair.ks * facet_normal(n, i).dot(du - m.anchor) - limit < -force_tolerance)
+    const int i = index_of(f, m.slip_direction, false);
+    if (pair.ks * facet_normal(f, i).dot(du - m.anchor) - limit < -force_tolerance)
       return {PairState::closed};
     const Vec3 force = sliding_force(pair, state, du);
-    const double g_next = facet_normal(n, i + 1).dot(force) - limit;
-    const double g_previous = facet_normal(n, i - 1).dot(force) - limit;
+    const double g_next = facet_normal(f, i + 1).dot(force) - limit;
+    const double g_previous = facet_normal(f, i - 1).dot(force) - limit;
     if (std::max(g_next, g_previous) > force_tolerance)
-      return {PairState::slip_edge, corner(n, g_next >= g_previous ? i + 1 : i)};
+      return {PairState::slip_edge, corner(f, g_next >= g_previous ? i + 1 : i)};
     return {state};
   }
   // slip_edge at corner v: the slip since the last commit, on the corner's two facets.
-  const int v = index_of(n, m.slip_direction, true);
+  const int v = index_of(f, m.slip_direction, true);
   const Vec3 moved = tangential(pair, du) - sliding_force(pair, state, du) / pair.ks - m.anchor;
-  const auto [gp, gq] = on_edge_facets(n, v, moved);
+  const auto [gp, gq] = on_edge_facets(f, v, moved);
   const bool leaves_p = pair.ks * gp < -force_tolerance, leaves_q = pair.ks * gq < -force_tolerance;
   if (leaves_p && leaves_q) return {PairState::closed};
-  if (leaves_p) return {PairState::slip, cos_half_ * facet_normal(n, v)};
-  if (leaves_q) return {PairState::slip, cos_half_ * facet_normal(n, v - 1)};
+  if (leaves_p) return {PairState::slip, cos_half_ * facet_normal(f, v)};
+  if (leaves_q) return {PairState::slip, cos_half_ * facet_normal(f, v - 1)};
   return {state};
 }
 
@@ -338,37 +344,38 @@ PairSwitch FrictionalContactLaw::next_switch_3d(const PairSprings& pair, PairSta
   if (!(state == PairState::closed || slides(state))) return first;
   consider(dn0, dn1, rate_threshold_, PairState::open, Vec3::Zero());
   if (pair.ks <= 0) return first;
+  const Frame f = frame_of(n);
   if (state == PairState::closed) {
     for (int j = 0; j < facets_; ++j) {
-      const Vec3 mj = facet_normal(n, j);
+      const Vec3 mj = facet_normal(f, j);
       consider(pair.ks * mj.dot(du0 - m.anchor) + friction_kn * dn0,
                pair.ks * mj.dot(du1) + friction_kn * dn1, force_threshold, PairState::slip,
                cos_half_ * mj);
     }
   } else if (state == PairState::slip) {
-    const int i = index_of(n, m.slip_direction, false);
-    const Vec3 mi = facet_normal(n, i);
+    const int i = index_of(f, m.slip_direction, false);
+    const Vec3 mi = facet_normal(f, i);
     if (pair.ks * mi.dot(du1) + friction_kn * dn1 < -force_threshold)
       at_start(PairState::closed, Vec3::Zero());
     // Sliding along the facet, the force meets an adjacent facet's limit at a corner.
     const Vec3 e = n.cross(mi).normalized();
     for (const int j : {i - 1, i + 1}) {
-      const Vec3 mj = facet_normal(n, j);
+      const Vec3 mj = facet_normal(f, j);
       const double gap = mj.dot(mi) - 1;  // (m_j . m_i - 1) < 0
       const double along = mj.dot(e);
       consider(-friction_kn * dn0 * gap + pair.ks * along * e.dot(du0 - m.anchor),
                -friction_kn * dn1 * gap + pair.ks * along * e.dot(du1), force_threshold,
-               PairState::slip_edge, corner(n, j > i ? i + 1 : i));
+               PairState::slip_edge, corner(f, j > i ? i + 1 : i));
     }
   } else {
-    const int v = index_of(n, m.slip_direction, true);
+    const int v = index_of(f, m.slip_direction, true);
     const Vec3 rate = tangential(pair, du1) + (friction_ * pair.kn * dn1 / pair.ks) * m.slip_direction;
-    const auto [gp, gq] = on_edge_facets(n, v, rate);
+    const auto [gp, gq] = on_edge_facets(f, v, rate);
     const bool leaves_p = pair.ks * gp < -force_threshold;
     const bool leaves_q = pair.ks * gq < -force_threshold;
     if (leaves_p && leaves_q) at_start(PairState::closed, Vec3::Zero());
-    else if (leaves_p) at_start(PairState::slip, cos_half_ * facet_normal(n, v));
-    else if (leaves_q) at_start(PairState::slip, cos_half_ * facet_normal(n, v - 1));
+    else if (leaves_p) at_start(PairState::slip, cos_half_ * facet_normal(f, v));
+    else if (leaves_q) at_start(PairState::slip, cos_half_ * facet_normal(f, v - 1));
   }
   return first;
 }
@@ -385,23 +392,17 @@ ContactMemory FrictionalContactLaw::entered_3d(const PairSprings& pair, PairStat
   if (to == PairState::closed) {
     m.slip_direction = Vec3::Zero();
   } else if (to == PairState::slip || to == PairState::slip_edge) {
+    const Frame f = frame_of(n);
     if (direction.squaredNorm() > 0) {
       m.slip_direction = direction;
-    } else if (to == PairState::slip) {
-      // The facet the stick force presses hardest.
-      int best = 0;
-      double most = -std::numeric_limits<double>::infinity();
-      for (int j = 0; j < facets_; ++j) {
-        const double g = facet_normal(n, j).dot(du - m.anchor);
-        if (g > most) most = g, best = j;
-      }
-      m.slip_direction = cos_half_ * facet_normal(n, best);
+    } else if (to == PairState::slip) {  // the facet the stick force presses hardest
+      m.slip_direction = cos_half_ * facet_normal(f, pressed_facet(f, du - m.anchor));
     } else {
       // From facet i: the corner towards which the force slides.
-      const int i = index_of(n, m.slip_direction, false);
-      const Vec3 e = n.cross(facet_normal(n, i)).normalized();
-      const bool next = facet_normal(n, i + 1).dot(e) * e.dot(du - m.anchor) >= 0;
-      m.slip_direction = corner(n, next ? i + 1 : i);
+      const int i = index_of(f, m.slip_direction, false);
+      const Vec3 e = n.cross(facet_normal(f, i)).normalized();
+      const bool next = facet_normal(f, i + 1).dot(e) * e.dot(du - m.anchor) >= 0;
+      m.slip_direction = corner(f, next ? i + 1 : i);
     }
   }
   return m;

@@ -55,12 +55,14 @@ struct Coupling {
 void EquilibriumSolver::woodbury_correction(const std::vector<std::int64_t>& slipping,
                                             double* rhs, std::int64_t n, int columns) {
   const auto k = static_cast<Eigen::Index>(slipping.size());
-  std::vector<double> terms;
-  for (const std::int64_t bond : slipping)
-    for (const CouplingTerm& t :
-         model_.law_of(bond)->coupling_terms(model_.springs(bond), model_.state(bond)))
+  std::vector<std::vector<CouplingTerm>> couplings;
+  std::vector<double> terms;  // the cache's key
+  for (const std::int64_t bond : slipping) {
+    couplings.push_back(model_.law_of(bond)->coupling_terms(model_.springs(bond), model_.state(bond)));
+    for (const CouplingTerm& t : couplings.back())
       terms.insert(terms.end(), {t.weight, t.left.x(), t.left.y(), t.left.z(), t.right.x(),
                                  t.right.y(), t.right.z()});
+  }
   WoodburyCache& cache = woodbury_;
   if (!(cache.valid && cache.factor_version == factor_.version() && cache.w.rows() == n &&
         cache.bonds == slipping && cache.terms == terms)) {
@@ -69,8 +71,7 @@ void EquilibriumSolver::woodbury_correction(const std::vector<std::int64_t>& sli
     for (Eigen::Index c = 0; c < k; ++c) {
       const std::int64_t bond = slipping[c];
       CholeskyFactor::Column u;
-      for (const CouplingTerm& term :
-           model_.law_of(bond)->coupling_terms(model_.springs(bond), model_.state(bond))) {
+      for (const CouplingTerm& term : couplings[c]) {
         append_on_bond(bond, term.weight * term.left, u);
         append_on_bond(bond, term.right, cache.v[c]);
       }

@@ -56,6 +56,7 @@
 
 #include <cstdint>
 #include <utility>
+#include <vector>
 
 #include "latfrac/mechanics/interaction_law.h"
 
@@ -95,16 +96,21 @@ class FrictionalContactLaw final : public InteractionLaw {
   static constexpr int max_facets = 64;
 
  private:
-  // 3-D: corner i and facet i's outward normal (indices taken modulo k).
-  Vec3 corner(const Vec3& n, int i) const;
-  Vec3 facet_normal(const Vec3& n, int i) const;
+  using Frame = std::pair<Vec3, Vec3>;  // (t1, t2), frame_of
+  // 3-D: the unit vector at angle pi h / k in the frame (h taken modulo 2k); corner i and
+  // facet i's outward normal.
+  Vec3 half_step(const Frame& frame, int h) const;
+  Vec3 corner(const Frame& frame, int i) const { return half_step(frame, 2 * i); }
+  Vec3 facet_normal(const Frame& frame, int i) const { return half_step(frame, 2 * i + 1); }
+  // 3-D: the facet whose normal has the largest projection of the tangential vector x.
+  int pressed_facet(const Frame& frame, const Vec3& x) const;
   // 3-D: the facet (slip) or corner (slip_edge) that a slip direction s names.
-  int index_of(const Vec3& n, const Vec3& s, bool edge) const;
+  int index_of(const Frame& frame, const Vec3& s, bool edge) const;
   // 3-D: the tangential force in a sliding state.
   Vec3 sliding_force(const PairSprings& pair, PairState state, const Vec3& du) const;
   // 3-D: parts (g_p, g_q) of a tangential vector x on facets p = i - 1 and q = i, the two
   // facets that meet at corner i.
-  std::pair<double, double> on_edge_facets(const Vec3& n, int i, const Vec3& x) const;
+  std::pair<double, double> on_edge_facets(const Frame& frame, int i, const Vec3& x) const;
   PairTarget settled_3d(const PairSprings& pair, PairState state, const Vec3& du) const;
   ContactMemory entered_3d(const PairSprings& pair, PairState from, PairState to, const Vec3& du,
                            const Vec3& direction) const;
@@ -114,6 +120,7 @@ class FrictionalContactLaw final : public InteractionLaw {
   double friction_;
   int facets_;
   double cos_half_;    // c = cos(pi / k)
+  std::vector<std::pair<double, double>> half_steps_;  // cos and sin of pi h / k, h < 2k
   double switch_tolerance_;  // m
   double rate_threshold_;    // m per unit lambda
 };
