@@ -6,7 +6,9 @@
 #include <latfrac_version.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -16,6 +18,7 @@
 
 #include "latfrac/analysis/fault_analysis.h"
 #include "latfrac/base/error.h"
+#include "latfrac/base/parallel.h"
 #include "latfrac/base/stop_signal.h"
 #include "latfrac/io/problem_file.h"
 #include "latfrac/io/result_file.h"
@@ -24,6 +27,7 @@
 #include "latfrac/render/render.h"
 #include "latfrac/scene/run.h"
 #include "latfrac/scene/size_estimate.h"
+#include "latfrac/solvers/linear_backend.h"
 #include "latfrac/study/study.h"
 
 namespace fs = std::filesystem;
@@ -40,15 +44,35 @@ std::string joined(int argc, char** argv) {
   return line;
 }
 
-// Refuses a problem whose estimated memory exceeds what the machine has available.
+// Refuses a problem whose estimated memory exceeds what the machine has available. With
+// the petsc backend: what this machine's ranks need (Open MPI says how many run here).
 void check_memory(const Scene& scene, bool force) {
   if (force) return;
-  const std::string refusal = memory_refusal(scene, estimate_size(scene), available_memory_bytes());
+  SizeEstimate estimate = estimate_size(scene);
+  if (scene.solver.backend == LinearBackendKind::petsc) {
+    const char* local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
+    const int here = local ? std::max(1, std::atoi(local)) : 1;
+    estimate.memory_bytes = here * rank_memory_bytes(estimate, parallel::size());
+  }
+  const std::string refusal = memory_refusal(scene, estimate, available_memory_bytes());
   if (!refusal.empty()) throw InputError(refusal);
 }
 
 // The exit status of a run stopped on request (docs/restart.md).
 constexpr int stopped_status = 3;
+
+// An error's message and exit status. Under MPI one rank's error must not leave the others
+// waiting in a collective call: it names its rank and stops them all.
+int failed(const std::exception& e, int status) {
+  if (parallel::distributed()) {
+    std::cerr << "latfrac: error (rank " << parallel::rank() << " of " << parallel::size()
+              << "): " << e.what() << "\n";
+    std::cerr.flush();
+    parallel::abort_all(status);
+  }
+  std::cerr << "latfrac: error: " << e.what() << "\n";
+  return status;
+}
 
 std::string text_of_file(const std::string& path) {
   std::ifstream stream(path, std::ios::binary);
@@ -121,8 +145,13 @@ int run_command(const RunRequest& request) {
   const bool resuming = !request.resume.empty();
   const Scene scene =
       resuming ? resumed_scene(request, point) : read_problem_file(request.problem, request.sets);
+  // The petsc backend starts MPI here: under mpirun every rank runs the same scene, and
+  // rank 0 alone prints and writes (docs/parallel.md).
+  start_linear_backend(scene.solver);
+  const bool writes = parallel::rank() == 0;
+  const bool quiet = request.quiet || !writes;
   check_memory(scene, request.force);
-  if (!request.quiet) std::cout << describe(scene) << "\n";
+  if (!quiet) std::cout << describe(scene) << "\n";
 
   // 2. The result file is written from the start, at every checkpoint and at the end;
   //    each write replaces it whole (docs/restart.md).
@@ -136,24 +165,29 @@ int run_command(const RunRequest& request) {
   }
   const std::string base = (fs::path(h5).parent_path() / fs::path(h5).stem()).string();
   const std::string xmf = base + ".xmf";
-  ResultWriter writer(
-      h5, xmf, request.checkpoint_minutes,
-      resuming ? point.checkpoint.problem_path : scene.source_path,
-      resuming ? (request.sets.empty() ? point.checkpoint.overrides : request.sets) : request.sets,
-      resuming && point.checkpoint.started ? point.result.summary.wall_seconds : 0);
+  std::optional<ResultWriter> writer;
+  if (writes) {
+    writer.emplace(
+        h5, xmf, request.checkpoint_minutes,
+        resuming ? point.checkpoint.problem_path : scene.source_path,
+        resuming ? (request.sets.empty() ? point.checkpoint.overrides : request.sets) : request.sets,
+        resuming && point.checkpoint.started ? point.result.summary.wall_seconds : 0);
+  }
+  RankedControl control(writer ? &*writer : nullptr);
 
   // 3. Run it.
   RunOptions options;
   options.command_line = request.command_line;
-  options.progress = !request.quiet;
-  options.control = &writer;
+  options.progress = !quiet;
+  options.control = &control;
   if (resuming) {
     options.resume = &point;
-    if (!request.quiet)
+    if (!quiet)
       std::cout << "resuming " << h5 << " from lambda " << point.checkpoint.lambda << " ("
                 << point.result.events.size() << " events)\n";
   }
   const RunResult result = run_scene(scene, options);
+  if (!writes) return result.summary.complete ? 0 : stopped_status;
   if (!result.summary.complete) {
     std::cerr << "latfrac: stopped at lambda " << result.summary.final_lambda << " after "
               << result.summary.breaks << " breaks; the results so far and a checkpoint are in "
@@ -162,16 +196,16 @@ int run_command(const RunRequest& request) {
   }
 
   // 4. The complete result, its ParaView description and the picture.
-  writer.finish(result);
+  writer->finish(result);
   const std::string picture = base + "." + scene.output.picture_format;
   if (scene.output.picture)
     render_picture(result, result.snapshots.size() - 1, picture, scene.output.picture_options);
 
   // 5. The summary.
-  if (!request.quiet) {
+  if (!quiet) {
     std::cout << summary_text(result) << "  wrote " << h5 << ", " << xmf
               << (scene.output.picture ? ", " + picture : "") << "\n  wrote the result file "
-              << writer.writes() << " times, in " << writer.write_seconds() << " s\n";
+              << writer->writes() << " times, in " << writer->write_seconds() << " s\n";
   }
   return 0;
 }
@@ -182,6 +216,7 @@ int check_command(const std::string& problem, const std::vector<std::string>& se
   std::cout << describe(scene) << "\n" << describe(estimate);
   const double available = available_memory_bytes();
   if (available > 0) std::cout << "  available memory " << readable_bytes(available) << "\n";
+  if (scene.solver.backend == LinearBackendKind::petsc) std::cout << describe_ranks(estimate, available);
   if (const std::string refusal = memory_refusal(scene, estimate, available); !refusal.empty()) {
     std::cout << "note: run will refuse this problem without --force: " << refusal << "\n";
   }
@@ -207,6 +242,9 @@ int study_command(const std::string& problem, const std::vector<std::string>& se
   StudyOptions options;
   options.increments = parse_increments(increments);
   const Scene scene = read_problem_file(problem, sets);
+  if (scene.solver.backend == LinearBackendKind::petsc)
+    throw InputError(problem + ": solver.backend = \"petsc\" is for latfrac run (under mpirun); "
+                     "latfrac study runs on the cholmod backend (--set solver.backend=cholmod)");
   check_memory(scene, force);
   if (!quiet) {
     std::cout << describe(scene) << "\nstudy: the event-driven reference, then fixed-step at ds =";
@@ -412,10 +450,8 @@ int main(int argc, char** argv) {
     std::cout << app.help();
     return 2;
   } catch (const InputError& e) {
-    std::cerr << "latfrac: error: " << e.what() << "\n";
-    return 2;
+    return failed(e, 2);
   } catch (const std::exception& e) {
-    std::cerr << "latfrac: error: " << e.what() << "\n";
-    return 1;
+    return failed(e, 1);
   }
 }

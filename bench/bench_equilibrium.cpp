@@ -11,6 +11,7 @@
 #include <string>
 
 #include "bench_cases.h"
+#include "latfrac/solvers/cholesky.h"
 #include "latfrac/solvers/equilibrium.h"
 #include "latfrac/scene/model_builder.h"
 

@@ -22,7 +22,6 @@
 // Built only when CMake finds PETSc (pkg-config PETSc: Debian's libpetsc-real-dev).
 #include <mpi.h>
 #include <petscksp.h>
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <cmath>
@@ -34,6 +33,8 @@
 #include "latfrac/io/problem_file.h"
 #include "latfrac/mechanics/stiffness.h"
 #include "latfrac/scene/model_builder.h"
+
+#include "peak_memory.h"
 
 using namespace latfrac;
 
@@ -173,12 +174,6 @@ Solve iterate(Mat a, Vec b, Vec x, const std::string& preconditioner, KSP k0_fac
   s.residual = relative_residual(a, x, b);
   KSPDestroy(&ksp);
   return s;
-}
-
-double peak_mib() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // kB on Linux
 }
 
 }  // namespace

@@ -21,9 +21,9 @@ packages=(
   python3                    # the CLI tests validate JSON output with it
   hdf5-tools                 # h5dump: the restart tests and scripts/event-lists.sh read event lists
   bc                         # the restart tests time their stops
-  libpetsc-real-dev          # bench/bench_petsc: the distributed backend's numerics (MUMPS, hypre)
+  libpetsc-real-dev          # solver.backend = "petsc" (src/solvers/petsc_backend.cpp), bench_petsc
   libmumps-dev libhypre-dev  # (PETSc's direct and multigrid solvers, named for clarity)
-  openmpi-bin                # mpirun for bench_petsc on several ranks
+  openmpi-bin                # mpirun: the petsc backend on several ranks, its tests (ctest -L backend)
 )
 
 missing=()

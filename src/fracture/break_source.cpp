@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "latfrac/base/parallel.h"
+
 namespace latfrac {
 
 FullPath full_path(const Model& model, const AffinePath& path) {
@@ -12,30 +14,37 @@ FullPath full_path(const Model& model, const AffinePath& path) {
   return full;
 }
 
+// With the petsc backend under MPI, each rank searches its own block of bonds; the
+// earliest crossing is the minimum over the ranks, and the tied group (every bond within
+// the tie window of it) is gathered in bond order: the same event on any number of ranks.
 PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
                         const AffinePath& path, double from, double to) {
   const double sign = to < from ? -1.0 : 1.0;  // search in s = sign * lambda, increasing
   const double s_from = sign * from, s_to = sign * to;
   const FullPath full = full_path(model, path);
   const PathStresses stresses = evaluator.path_stresses(model, full.at_zero, full.per_lambda, sign);
-  std::vector<double> crossing(model.lattice.bond_count(), std::numeric_limits<double>::infinity());
+  const parallel::Range mine = parallel::share(model.lattice.bond_count());
+  std::vector<double> crossing(mine.last - mine.first, std::numeric_limits<double>::infinity());
   double first = std::numeric_limits<double>::infinity();
-  for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
+  for (std::int64_t b = mine.first; b < mine.last; ++b) {
     if (!model.intact(b)) continue;
     // Only a crossing up to the earliest found so far (with room for ties) can matter.
     const double needed_until =
         std::isfinite(first)
             ? first + 2 * FailureEvaluator::tie_tolerance * std::max(std::abs(first), 1e-300)
             : std::numeric_limits<double>::infinity();
-    crossing[b] = evaluator.first_crossing(model, b, stresses, s_from, s_to, needed_until);
-    first = std::min(first, crossing[b]);
+    double& c = crossing[b - mine.first];
+    c = evaluator.first_crossing(model, b, stresses, s_from, s_to, needed_until);
+    first = std::min(first, c);
   }
+  first = parallel::min_over_ranks(first);
   PathCrossing event;
   if (!std::isfinite(first)) return event;
   const double window = first + FailureEvaluator::tie_tolerance * std::max(std::abs(first), 1e-300);
-  for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
-    if (crossing[b] <= window) event.tied.push_back(b);
+  for (std::int64_t b = mine.first; b < mine.last; ++b) {
+    if (crossing[b - mine.first] <= window) event.tied.push_back(b);
   }
+  event.tied = parallel::gathered(event.tied);
   event.lambda = sign * first;
   return event;
 }

@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "latfrac/base/error.h"
+#include "latfrac/base/parallel.h"
+#include "latfrac/base/stop_signal.h"
 #include "latfrac/fracture/break_source.h"
 #include "latfrac/fracture/event_loop.h"
 #include "latfrac/fracture/pair_switch_source.h"
@@ -242,6 +244,18 @@ void FractureRun::integrated_events() {
     progress_.update(lambda, breaking_.breaks());
     if (lambda != total) between_events(lambda, 0);
   }
+}
+
+bool RankedControl::stop_requested() const {
+  return parallel::any_rank(writer_ ? writer_->stop_requested() : latfrac::stop_requested());
+}
+
+bool RankedControl::checkpoint_due() {
+  return parallel::any_rank(writer_ && writer_->checkpoint_due());
+}
+
+void RankedControl::save(RunResult& result, RunCheckpoint& checkpoint) {
+  if (writer_) writer_->save(result, checkpoint);
 }
 
 }  // namespace latfrac

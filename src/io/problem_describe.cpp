@@ -86,6 +86,9 @@ void describe_solver(const SolverOptions& solver, Listing& out) {
   const char* orderings[] = {"metis", "nesdis", "amd"};
   out.section("solver");
   out.entry("method", solver.method == EquilibriumMethod::newton ? "newton" : "relaxation");
+  out.entry("backend", solver.backend == LinearBackendKind::cholmod ? "cholmod" : "petsc",
+            solver.backend == LinearBackendKind::cholmod ? "(one CHOLMOD factor)"
+                                                         : "(PETSc and MUMPS over the MPI ranks)");
   out.entry("tolerance", solver.tolerance, "(residual relative to the load)");
   out.entry("max_iterations", std::to_string(solver.max_iterations));
   out.entry("ordering", orderings[static_cast<int>(solver.ordering)]);

@@ -312,13 +312,15 @@ void read_loading(const Section& top, Scene& scene) {
 
 void read_solver(const Section& top, SolverOptions& solver) {
   const auto s =
-      top.section("solver", {"method", "tolerance", "max_iterations", "ordering", "refactor_every",
-                             "relaxation_omega", "relaxation_tolerance", "relaxation_max_sweeps"});
+      top.section("solver", {"method", "backend", "tolerance", "max_iterations", "ordering",
+                             "refactor_every", "relaxation_omega", "relaxation_tolerance", "relaxation_max_sweeps"});
   if (!s) return;
   const Range fraction{0, 1, true, true, ""};
   const std::int64_t int_max = std::numeric_limits<int>::max();
   solver.method =
       static_cast<EquilibriumMethod>(s->choice("method", {"newton", "relaxation"}).value_or(0));
+  solver.backend =
+      static_cast<LinearBackendKind>(s->choice("backend", {"cholmod", "petsc"}).value_or(0));
   solver.tolerance = s->number("tolerance", fraction, solver.tolerance);
   solver.max_iterations =
       static_cast<int>(s->integer("max_iterations", 1, int_max).value_or(solver.max_iterations));

@@ -187,6 +187,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     try {
       fracture.run();
     } catch (const RunStopped&) {
+      if (options.backend_statistics) *options.backend_statistics = solver.factor().statistics();
       progress.finish();
       result.summary.wall_seconds =
           wall_before +
@@ -201,6 +202,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     result.summary.factor_updates = solver.counters().factor_updates;
   }
   progress.finish();
+  if (options.backend_statistics) *options.backend_statistics = solver.factor().statistics();
 
   result.summary.final_lambda = scene.loading.total;
   result.summary.complete = true;

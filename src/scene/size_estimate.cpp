@@ -1,6 +1,7 @@
 // Size and memory estimates of a scene, from its lattice geometry and fitted factor growth.
 #include "latfrac/scene/size_estimate.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -34,6 +35,44 @@ SizeEstimate estimate_size(const Scene& scene) {
       spec.dim == 2 ? 7.1 * n * std::log(std::max(n, 2.0)) : 15.6 * std::pow(n, 4.0 / 3.0);
   estimate.memory_bytes = 24.0 * estimate.factor_nonzeros + 1024.0 * estimate.nodes;
   return estimate;
+}
+
+namespace {
+constexpr double mumps_bytes_per_entry = 10.7;
+constexpr double rank_imbalance = 1.15;  // rank 0 holds more than its share
+double replicated_bytes(const SizeEstimate& estimate) {
+  return 45.0 * 1024 * 1024 + 10.0 * 1024 * estimate.nodes;
+}
+}  // namespace
+
+double rank_memory_bytes(const SizeEstimate& estimate, int ranks) {
+  const double factor = mumps_bytes_per_entry * estimate.factor_nonzeros;
+  return replicated_bytes(estimate) +
+         (ranks > 1 ? rank_imbalance * factor / ranks : factor);
+}
+
+std::string describe_ranks(const SizeEstimate& estimate, double available_bytes) {
+  std::ostringstream text;
+  text << "  petsc backend, peak memory per rank (estimate):";
+  for (int ranks : {1, 2, 4, 8, 16, 32, 64})
+    text << (ranks == 1 ? " " : ", ") << ranks << ": " << readable_bytes(rank_memory_bytes(estimate, ranks));
+  text << "\n";
+  if (available_bytes > 0) {
+    const double whole = replicated_bytes(estimate);
+    if (whole < available_bytes) {
+      const double factor = mumps_bytes_per_entry * estimate.factor_nonzeros;
+      const double ranks =
+          rank_memory_bytes(estimate, 1) <= available_bytes
+              ? 1.0
+              : std::max(2.0, std::ceil(rank_imbalance * factor / (available_bytes - whole)));
+      text << "  ranks needed with " << readable_bytes(available_bytes) << " each: " << ranks
+           << " (one per machine; the factor is split, the model is on every rank)\n";
+    } else {
+      text << "  no number of ranks with " << readable_bytes(available_bytes)
+           << " each holds it: what every rank holds whole does not fit\n";
+    }
+  }
+  return text.str();
 }
 
 std::string readable_bytes(double bytes) {

@@ -25,7 +25,7 @@ void EquilibriumSolver::solve_coupled(double* rhs, std::int64_t n, int columns) 
     unsymmetric_solve(slipping, rhs, n, columns);
     return;
   }
-  factor_.solve(rhs, n, columns);
+  factor_->solve(rhs, n, columns);
   if (slipping.empty()) return;
   ++counters_.coupled_solves;
   woodbury_correction(slipping, rhs, n, columns);
@@ -36,7 +36,7 @@ namespace {
 // W = A^-1 U and the columns of V for the slipping contacts, and V' x.
 struct Coupling {
   const Eigen::MatrixXd& w;
-  const std::vector<CholeskyFactor::Column>& v;
+  const std::vector<LinearBackend::Column>& v;
   Eigen::MatrixXd v_times(const Eigen::Ref<const Eigen::MatrixXd>& x) const {
     Eigen::MatrixXd product = Eigen::MatrixXd::Zero(w.cols(), x.cols());
     for (Eigen::Index c = 0; c < w.cols(); ++c)
@@ -64,24 +64,24 @@ void EquilibriumSolver::woodbury_correction(const std::vector<std::int64_t>& sli
                                  t.right.y(), t.right.z()});
   }
   WoodburyCache& cache = woodbury_;
-  if (!(cache.valid && cache.factor_version == factor_.version() && cache.w.rows() == n &&
+  if (!(cache.valid && cache.factor_version == factor_->version() && cache.w.rows() == n &&
         cache.bonds == slipping && cache.terms == terms)) {
     cache.w = Eigen::MatrixXd::Zero(n, k);
     cache.v.assign(static_cast<std::size_t>(k), {});
     for (Eigen::Index c = 0; c < k; ++c) {
       const std::int64_t bond = slipping[c];
-      CholeskyFactor::Column u;
+      LinearBackend::Column u;
       for (const CouplingTerm& term : couplings[c]) {
         append_on_bond(bond, term.weight * term.left, u);
         append_on_bond(bond, term.right, cache.v[c]);
       }
       for (const auto& [row, value] : u) cache.w(row, c) += value;
     }
-    factor_.solve(cache.w.data(), n, static_cast<int>(k));
+    factor_->solve(cache.w.data(), n, static_cast<int>(k));
     cache.capacitance = Coupling{cache.w, cache.v}.capacitance().partialPivLu();
     cache.bonds = slipping;
     cache.terms = std::move(terms);
-    cache.factor_version = factor_.version();
+    cache.factor_version = factor_->version();
     cache.valid = true;
   }
   const Coupling coupling{cache.w, cache.v};
@@ -121,7 +121,7 @@ void EquilibriumSolver::unsymmetric_solve(const std::vector<std::int64_t>& slipp
     for (; lu_changes_solved_ < lu_changes_.size(); ++lu_changes_solved_) {
       const auto& [bond, change] = lu_changes_[lu_changes_solved_];
       for (const int axis : axes) {
-        CholeskyFactor::Column left, right;
+        LinearBackend::Column left, right;
         append_on_bond(bond, change.col(axis), left);
         append_on_bond(bond, Vec3::Unit(axis), right);
         u.conservativeResize(n, u.cols() + 1);
@@ -169,7 +169,7 @@ void EquilibriumSolver::factorize_unsymmetric(const std::vector<std::int64_t>& s
   for (std::int64_t bond : slipping) {
     for (const CouplingTerm& term :
          model_.law_of(bond)->coupling_terms(model_.springs(bond), model_.state(bond))) {
-      CholeskyFactor::Column left, right;
+      LinearBackend::Column left, right;
       append_on_bond(bond, term.weight * term.left, left);
       append_on_bond(bond, term.right, right);
       for (const auto& [r, a] : left)

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "latfrac/base/error.h"
+#include "latfrac/solvers/cholesky.h"
 #include "unsymmetric.h"
 
 namespace latfrac {
@@ -55,7 +56,7 @@ void EquilibriumSolver::refactorize(const Vector& free_displacement, double lamb
   last_solution_valid_ = false;
   lu_current_ = false;  // a fresh factor (a missed residual, say): a fresh LU too
   stiffness_.assemble(model_, model_.full_displacement(free_displacement, lambda));
-  factor_.factorize(stiffness_);
+  factor_->factorize(stiffness_);
   ++counters_.factorizations;
   factor_current_ = true;
   updates_since_factorization_ = 0;
@@ -75,7 +76,7 @@ EquilibriumSolver::History EquilibriumSolver::history() const {
     h.factored_states = factored_states_;
     h.changes = changes_since_factorization_;
   }
-  h.elimination_order = factor_.given_order();
+  h.elimination_order = factor_->given_order();
   h.lu_current = lu_current_ && model_.has_friction();
   if (h.lu_current) {
     h.lu_states = lu_factored_states_;
@@ -168,15 +169,15 @@ void EquilibriumSolver::update_factor(std::int64_t bond, const std::vector<RankO
     last_solution_valid_ = false;
     return;
   }
-  std::vector<CholeskyFactor::Column> columns;
+  std::vector<LinearBackend::Column> columns;
   for (const auto& [weight, direction] : terms) {
     if (weight <= 0) continue;
-    CholeskyFactor::Column column;
+    LinearBackend::Column column;
     append_on_bond(bond, std::sqrt(weight) * direction, column);
     if (!column.empty()) columns.push_back(std::move(column));
   }
   try {
-    factor_.update(columns, downdate);
+    factor_->update(columns, downdate);
   } catch (const Error&) {
     factor_current_ = false;  // refactorize; a real singularity is reported there
     last_solution_valid_ = false;
@@ -219,7 +220,7 @@ void EquilibriumSolver::record_force_change(std::int64_t bond,
 }
 
 void EquilibriumSolver::append_on_bond(std::int64_t bond, const Vec3& v,
-                                       CholeskyFactor::Column& column) const {
+                                       LinearBackend::Column& column) const {
   const Bond& pair = model_.lattice.bonds[bond];
   const std::vector<int> axes = model_.lattice.axes();
   const int dim = model_.dim();
@@ -359,9 +360,9 @@ bool EquilibriumSolver::at_rounding_floor(const Vector& free_displacement, doubl
 // tolerance, is accepted. Else the run stops, saying where and what to try.
 void EquilibriumSolver::fresh_solve_missed(const Vector& free_displacement, double lambda,
                                            double residual) {
-  const CholeskyFactor::WeakestPivot& weakest = factor_.weakest_pivot();
+  const LinearBackend::WeakestPivot& weakest = factor_->weakest_pivot();
   if (weakest.position >= 0 && weakest.ratio < CholeskyFactor::near_mechanism_pivot) {
-    const CholeskyFactor::NullMode mode = factor_.null_mode(stiffness_);
+    const LinearBackend::NullMode mode = factor_->null_mode(stiffness_);
     std::ostringstream message;
     message << std::scientific << std::setprecision(2) << "equilibrium at lambda " << lambda
             << ": the residual after a fresh factorization is " << residual
@@ -408,7 +409,7 @@ std::string EquilibriumSolver::ill_conditioned(const Vector& free_displacement, 
     message << ", largest at " << describe_unknown(worst) << "; the displacement reaches "
             << std::abs(free_displacement[moved]) << " m at " << describe_unknown(moved);
   }
-  const CholeskyFactor::WeakestPivot& weakest = factor_.weakest_pivot();
+  const LinearBackend::WeakestPivot& weakest = factor_->weakest_pivot();
   if (weakest.column >= 0) {
     message << "; the weakest pivot is " << weakest.ratio << " of its diagonal, at "
             << describe_unknown(weakest.column);
@@ -438,7 +439,7 @@ Vector EquilibriumSolver::checked_solve(double lambda) {
   const std::int64_t n = model_.dofs().free_count;
   if (last_solution_valid_ && factor_current_ && lambda == last_lambda_ && n > 0) {
     Vector correction(n);
-    if (factor_.solve_sparse(pending_forces_, correction.data())) {
+    if (factor_->solve_sparse(pending_forces_, correction.data())) {
       ++counters_.solves;
       ++counters_.correction_solves;
       Vector u = last_solution_ + correction;
@@ -480,7 +481,7 @@ void EquilibriumSolver::supports_changed() {
 }
 
 void EquilibriumSolver::analyse(const std::vector<std::int64_t>& given) {
-  factor_.analyze(stiffness_, given);
+  factor_->analyze(stiffness_, given);
   const auto& free_index = model_.dofs().free_index;
   analysed_globals_.assign(model_.dofs().free_count, 0);
   for (std::size_t g = 0; g < free_index.size(); ++g)
@@ -492,7 +493,7 @@ void EquilibriumSolver::analyse(const std::vector<std::int64_t>& given) {
 // order, restricted, stays fill-reducing and the ordering (METIS: about a tenth of the 3-D
 // reference run with contact, which holds parts 233 times) is not redone.
 std::vector<std::int64_t> EquilibriumSolver::inherited_order() const {
-  const std::vector<std::int64_t> previous = factor_.elimination_order();
+  const std::vector<std::int64_t> previous = factor_->elimination_order();
   if (analysed_globals_.empty() || previous.size() != analysed_globals_.size()) return {};
   const auto& free_index = model_.dofs().free_index;
   std::vector<std::int64_t> order;

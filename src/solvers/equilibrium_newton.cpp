@@ -61,7 +61,7 @@ struct EquilibriumSolver::Kinsol {
     auto* k = static_cast<Kinsol*>(ls->content);
     EquilibriumSolver& s = *k->owner;
     try {
-      s.factor_.factorize(s.stiffness_);
+      s.factor_->factorize(s.stiffness_);
     } catch (const SingularStiffness& e) {
       k->last_message = e.what();
       k->singular_unknown = e.unknown();
@@ -79,7 +79,7 @@ struct EquilibriumSolver::Kinsol {
     auto* k = static_cast<Kinsol*>(ls->content);
     EquilibriumSolver& s = *k->owner;
     as_vector(x) = as_vector(b);
-    s.factor_.solve(N_VGetArrayPointer(x), N_VGetLength(x), 1);
+    s.factor_->solve(N_VGetArrayPointer(x), N_VGetLength(x), 1);
     ++s.counters_.solves;
     return 0;
   }
@@ -135,7 +135,7 @@ struct EquilibriumSolver::Kinsol {
 
 // The constructor and destructor live here, where Kinsol is a complete type.
 EquilibriumSolver::EquilibriumSolver(Model& model, const SolverOptions& options)
-    : model_(model), editor_(model), options_(options), stiffness_(model), factor_(options.ordering) {
+    : model_(model), editor_(model), options_(options), stiffness_(model), factor_(make_linear_backend(options)) {
   reset_kinsol();
   find_boundary_bonds();
   // Analysed now (not at the first factorization) so that holds can inherit the order.

@@ -18,17 +18,7 @@ name=$(sed -n 's/^name *= *"\([^"]*\)".*/\1/p' "$problem" | head -1)
 failures=0
 fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
 
-# The events of a result file, one per line: lambda bond f mode cascade.
-events() {
-  h5dump -m '%.17g' -w 0 -d /events/lambda -d /events/bond -d /events/f -d /events/mode \
-    -d /events/cascade "$1" |
-    awk '/DATASET/ { name = $2; n = 0 }
-         /^ *\([0-9]+\): / { sub(/^ *\([0-9]+\): /, ""); gsub(/,/, " ");
-                              for (i = 1; i <= NF; i++) v[name, n++] = $i; count[name] = n }
-         END { k = "\"/events/lambda\""; for (i = 0; i < count[k]; i++)
-                 print v[k, i], v["\"/events/bond\"", i], v["\"/events/f\"", i],
-                       v["\"/events/mode\"", i], v["\"/events/cascade\"", i] }'
-}
+source "$(dirname "$0")/events.sh"  # events FILE.h5: one line per event
 
 # Same bonds, modes and cascades in the same order, lambdas and f to 1e-12 relative.
 same_events() {

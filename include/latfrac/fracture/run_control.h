@@ -82,6 +82,22 @@ class RunControl {
   virtual void save(RunResult& result, RunCheckpoint& checkpoint) = 0;
 };
 
+// The control of a run under MPI (the petsc backend, docs/parallel.md): every rank takes
+// the same steps, so a stop and a checkpoint are decided for all ranks at once (a stop
+// signal on any rank stops every rank; rank 0's clock says when a checkpoint is due) and
+// only rank 0, which holds the writer, writes. With one rank it is the writer itself.
+class RankedControl : public RunControl {
+ public:
+  // writer: the result file's writer on rank 0, null on the others.
+  explicit RankedControl(RunControl* writer) : writer_(writer) {}
+  bool stop_requested() const override;
+  bool checkpoint_due() override;
+  void save(RunResult& result, RunCheckpoint& checkpoint) override;
+
+ private:
+  RunControl* writer_;
+};
+
 // Thrown out of a run that stopped on request, after its checkpoint was saved.
 class RunStopped : public std::exception {
  public:

@@ -2,6 +2,8 @@
 // provenance), and the one-screen summary of a result.
 #pragma once
 
+#include "latfrac/solvers/linear_backend.h"
+
 #include <string>
 #include <vector>
 
@@ -24,6 +26,9 @@ struct RunOptions {
   // the results at the start (lattice and provenance, before anything is computed).
   RunControl* control = nullptr;
   const ResumePoint* resume = nullptr;  // continue this run instead of starting afresh
+  // When given, receives what the linear backend did (benchmarks; the petsc backend's
+  // factorizations and CG iterations), also when the run stops on request.
+  LinearBackend::Statistics* backend_statistics = nullptr;
 };
 
 // The effects a scene names that this version cannot simulate yet (empty: it can run).

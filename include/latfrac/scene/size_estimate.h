@@ -21,6 +21,17 @@ struct SizeEstimate {
 
 SizeEstimate estimate_size(const Scene& scene);
 
+// The petsc backend's peak memory on each of `ranks` ranks (docs/parallel.md): MUMPS's
+// factor, about 10.7 bytes per (estimated) factor entry, split over the ranks with 15 %
+// more on the busiest, plus what every rank holds whole (the model, latfrac's stiffness,
+// CHOLMOD's symbolic analysis, the libraries): about 45 MiB + 10 KiB per node. Fitted to
+// bench/bench_backend on the 3-D reference block at 1000 m and 700 m on 1 to 4 ranks
+// (within 10 % of each measured peak).
+double rank_memory_bytes(const SizeEstimate& estimate, int ranks);
+// The table `latfrac check` prints for the petsc backend: memory per rank for 1 to 64
+// ranks, and how many ranks of `available_bytes` each it needs.
+std::string describe_ranks(const SizeEstimate& estimate, double available_bytes);
+
 // The memory the operating system says is available now (MemAvailable), bytes; 0 if unknown.
 double available_memory_bytes();
 

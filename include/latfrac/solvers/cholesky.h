@@ -12,61 +12,54 @@
 #include <utility>
 #include <vector>
 
-#include "latfrac/solvers/solver_options.h"
-#include "latfrac/mechanics/stiffness.h"
+#include "latfrac/solvers/linear_backend.h"
 
 namespace latfrac {
 
-class CholeskyFactor {
+class CholeskyFactor final : public LinearBackend {
  public:
   explicit CholeskyFactor(Ordering ordering = Ordering::metis);
-  ~CholeskyFactor();
+  ~CholeskyFactor() override;
   CholeskyFactor(const CholeskyFactor&) = delete;
   CholeskyFactor& operator=(const CholeskyFactor&) = delete;
 
   // Fill-reducing ordering and symbolic factorization of the pattern. With `given` (a
   // permutation of 0..n-1, the elimination order) the ordering step is skipped and that
   // order used (CHOLMOD_GIVEN, postordered).
-  void analyze(StiffnessMatrix& matrix, const std::vector<std::int64_t>& given = {});
+  void analyze(StiffnessMatrix& matrix, const std::vector<std::int64_t>& given) override;
+  void analyze(StiffnessMatrix& matrix) { analyze(matrix, {}); }
   // The analysis's elimination order (row k of the permuted matrix is row order[k]);
   // empty before an analysis.
-  std::vector<std::int64_t> elimination_order() const;
+  std::vector<std::int64_t> elimination_order() const override;
   // The order the last analysis was given (empty: the ordering method chose it).
-  const std::vector<std::int64_t>& given_order() const { return given_; }
+  const std::vector<std::int64_t>& given_order() const override { return given_; }
   // Numeric factorization (analyzes first if needed). Throws SingularStiffness, naming the
   // column where it showed, when the matrix is not positive definite or singular to
   // working precision: a rigid-body motion or a part of the body without support; or when
   // a pivot is at most mechanism_pivot of its diagonal, naming the unknown the mechanism
   // moves most.
-  void factorize(StiffnessMatrix& matrix);
+  void factorize(StiffnessMatrix& matrix) override;
   // Solves K X = B for `columns` right-hand sides stored column after column, in place.
-  void solve(double* rhs, std::int64_t rows, int columns);
+  void solve(double* rhs, std::int64_t rows, int columns) override;
 
-  // A sparse column for a rank update: (row, value) pairs in the matrix's own numbering.
-  using Column = std::vector<std::pair<std::int64_t, double>>;
   // Solves K x = b for a right-hand side b with few nonzeros (rows may repeat: they add)
   // into x (n entries). Needs the simplicial LDL' factor that updates leave: the forward
   // solve then visits only the columns that b reaches in the factor's elimination graph,
   // about half the work of solve() for the few-entry b of a bond's force. Returns false,
   // leaving x alone, when the factor is still supernodal (use solve()).
-  bool solve_sparse(const Column& b, double* x);
+  bool solve_sparse(const Column& b, double* x) override;
   // K <- K + C C' (update) or K - C C' (downdate) on the factor itself, without
   // refactorizing. The first call converts the supernodal LL' factor to the simplicial
   // LDL' form that cholmod_l_updown needs. Throws Error if the result is not positive
   // definite.
-  void update(const std::vector<Column>& columns, bool downdate);
+  void update(const std::vector<Column>& columns, bool downdate) override;
 
   // A mechanism shows as a pivot far below its own column's diagonal of K: L(k,k)^2 is the
   // stiffness of that unknown when the unknowns eliminated before it may move, K(p,p) its
   // stiffness when every other unknown is held. The weakest pivot of the last fresh
   // factorization: its position in the factor's order, its column in the matrix's, and
   // L(k,k)^2 / K(p,p), in [0, 1]. position -1: none measured (no fresh factorization).
-  struct WeakestPivot {
-    std::int64_t position = -1;
-    std::int64_t column = -1;
-    double ratio = 1;
-  };
-  const WeakestPivot& weakest_pivot() const { return weakest_; }
+  const WeakestPivot& weakest_pivot() const override { return weakest_; }
   // The scan that factorize() makes (O(n)), for benchmarks; needs the fresh supernodal
   // factor of `matrix`.
   WeakestPivot find_weakest_pivot(StiffnessMatrix& matrix) const;
@@ -85,21 +78,15 @@ class CholeskyFactor {
   // has none of its own, and the product shows the factor's error: 0.16 to 3 away from 1
   // where measured. One triangular solve and one pass over K; needs the fresh supernodal
   // factor.
-  struct NullMode {
-    std::int64_t largest = -1;
-    std::int64_t moving = 0;
-    double energy = 1;
-    bool rounding() const { return !(std::abs(energy - 1) <= 1e-2); }
-  };
-  NullMode null_mode(StiffnessMatrix& matrix);
+  NullMode null_mode(StiffnessMatrix& matrix) override;
 
   bool analyzed() const;
-  bool factorized() const { return factorized_; }
+  bool factorized() const override { return factorized_; }
   std::int64_t factor_nonzeros() const;
 
   // Changes with every analysis, factorization and update: a caller may keep solves with
   // this factor (A^-1 U) while it stays the same.
-  std::uint64_t version() const { return version_; }
+  std::uint64_t version() const override { return version_; }
 
  private:
   std::uint64_t version_ = 0;

@@ -20,7 +20,7 @@
 
 #include "latfrac/mechanics/model.h"
 #include "latfrac/mechanics/stiffness.h"
-#include "latfrac/solvers/cholesky.h"
+#include "latfrac/solvers/linear_backend.h"
 #include "latfrac/solvers/solver_options.h"
 
 namespace latfrac {
@@ -103,7 +103,7 @@ class EquilibriumSolver {
     bool solution_valid = false;
     double solution_lambda = 0;
     Vector solution;
-    CholeskyFactor::Column pending_forces;
+    LinearBackend::Column pending_forces;
     // The order the last analysis was given (free numbering; empty: the ordering method
     // chose it). Holds inherit the order (supports_changed), so the resumed supports,
     // ordered afresh, would round differently; analysing with the same input again gives
@@ -127,7 +127,7 @@ class EquilibriumSolver {
 
   const SolverCounters& counters() const { return counters_; }
   StiffnessMatrix& stiffness() { return stiffness_; }
-  CholeskyFactor& factor() { return factor_; }
+  LinearBackend& factor() { return *factor_; }
 
  private:
   struct Kinsol;  // equilibrium_newton.cpp
@@ -186,7 +186,7 @@ class EquilibriumSolver {
   std::vector<std::pair<std::int64_t, Mat3>> lu_changes_;
   std::size_t lu_changes_solved_ = 0;  // of lu_changes_: those with columns in lu_w_
   Eigen::MatrixXd lu_w_;
-  std::vector<CholeskyFactor::Column> lu_v_;
+  std::vector<LinearBackend::Column> lu_v_;
   // The pair's exact tangent dt/d(du) in its state (zero without a law).
   Mat3 pair_jacobian(std::int64_t bond) const;
   // Records the change of bond's Jacobian from `before`, while an LU is current.
@@ -201,7 +201,7 @@ class EquilibriumSolver {
     std::vector<std::int64_t> bonds;
     std::vector<double> terms;  // each contact's coupling terms, flattened
     Eigen::MatrixXd w;
-    std::vector<CholeskyFactor::Column> v;
+    std::vector<LinearBackend::Column> v;
     Eigen::PartialPivLU<Eigen::MatrixXd> capacitance;
     bool valid = false;
   };
@@ -221,16 +221,16 @@ class EquilibriumSolver {
   // then took out of it or added to it, on the free dofs. At the same lambda the new
   // solution is that one plus K^-1 (those forces): a right-hand side with a few entries per
   // update, which the updated factor solves at about half the cost of a full one
-  // (CholeskyFactor::solve_sparse). The residual check still guards the result.
+  // (LinearBackend::solve_sparse). The residual check still guards the result.
   void remember_solution(const Vector& free_displacement, double lambda);
   // Appends v on node j's free dofs and -v on node i's (the pattern of bond (i, j)).
-  void append_on_bond(std::int64_t bond, const Vec3& v, CholeskyFactor::Column& column) const;
+  void append_on_bond(std::int64_t bond, const Vec3& v, LinearBackend::Column& column) const;
   void record_force_change(std::int64_t bond, const std::vector<RankOneTerm>& terms,
                            bool downdate);
   Vector last_solution_;
   double last_lambda_ = 0;
   bool last_solution_valid_ = false;
-  CholeskyFactor::Column pending_forces_;
+  LinearBackend::Column pending_forces_;
   std::vector<std::uint8_t> factored_states_;
   std::vector<std::pair<std::int64_t, std::uint8_t>> changes_since_factorization_;
 
@@ -238,7 +238,7 @@ class EquilibriumSolver {
   ModelEditor editor_;
   SolverOptions options_;
   StiffnessMatrix stiffness_;
-  CholeskyFactor factor_;
+  std::unique_ptr<LinearBackend> factor_;
   bool factor_current_ = false;
   SolverCounters counters_;
   std::unique_ptr<Kinsol> kinsol_;

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# The petsc backend against the cholmod backend (docs/parallel.md): a problem run with
+# solver.backend = "cholmod", then under `mpirun -np RANKS` with "petsc", must give the
+# same event list: the same bonds, modes and cascades in the same order, lambda and f to
+# 1e-9 relative. Each run checks its own equilibria to solver.tolerance (a solve that
+# misses it is redone from a fresh factorization, or the run stops with an error).
+#
+# Usage: backend_case.sh LATFRAC MPIEXEC WORKDIR RANKS PROBLEM [--set ...]
+# Needs h5dump (hdf5-tools), as scripts/event-lists.sh does.
+set -u
+latfrac=$1 mpiexec=$2 work=$3 ranks=$4 problem=$5
+shift 5
+sets=("$@")
+rm -rf -- "$work" && mkdir -p -- "$work" || exit 99
+command -v h5dump > /dev/null || { echo "backend_case.sh: needs h5dump" >&2; exit 99; }
+
+source "$(dirname "$0")/events.sh"  # events FILE.h5: one line per event
+
+"$latfrac" run "$problem" -o "$work/cholmod" --quiet "${sets[@]}" --set solver.backend=cholmod ||
+  { echo "FAIL: the cholmod run failed" >&2; exit 1; }
+"$mpiexec" --allow-run-as-root --oversubscribe -np "$ranks" -x OPENBLAS_NUM_THREADS=1 \
+  "$latfrac" run "$problem" -o "$work/petsc" --quiet "${sets[@]}" --set solver.backend=petsc ||
+  { echo "FAIL: the petsc run on $ranks ranks failed" >&2; exit 1; }
+a=$(ls "$work"/cholmod/*.h5) b=$(ls "$work"/petsc/*.h5)
+events "$a" > "$work/cholmod.txt"
+events "$b" > "$work/petsc.txt"
+count=$(wc -l < "$work/cholmod.txt")
+[[ $count -gt 0 ]] || { echo "FAIL: the cholmod run has no events" >&2; exit 1; }
+[[ $count == $(wc -l < "$work/petsc.txt") ]] ||
+  { echo "FAIL: $count events with cholmod, $(wc -l < "$work/petsc.txt") with petsc" >&2; exit 1; }
+paste -d ' ' "$work/cholmod.txt" "$work/petsc.txt" | awk '
+  function off(a, b) { d = a - b; if (d < 0) d = -d; m = a < 0 ? -a : a; n = b < 0 ? -b : b;
+                       if (n > m) m = n; return d > 1e-9 * m }
+  function rel(a, b) { d = a - b; if (d < 0) d = -d; m = a < 0 ? -a : a; return m > 0 ? d / m : d }
+  { if (rel($1, $6) > worst) worst = rel($1, $6) }
+  NF != 10 || $2 != $7 || $4 != $9 || $5 != $10 || off($1, $6) || off($3, $8) {
+    print "FAIL: events differ from event " NR ": cholmod " $1, $2, $3, $4, $5 ", petsc " $6, $7, $8, $9, $10 > "/dev/stderr"; exit 1 }
+  END { printf "%d events equal; largest relative difference of lambda %.2g\n", NR, worst }'
