@@ -43,24 +43,11 @@ double min_over_ranks(double value) {
   return result;
 }
 
-double max_over_ranks(double value) {
-  if (!distributed()) return value;
-  double result = value;
-  MPI_Allreduce(&value, &result, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-  return result;
-}
-
 bool any_rank(bool flag) {
   if (!distributed()) return flag;
   int local = flag ? 1 : 0, result = 0;
   MPI_Allreduce(&local, &result, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
   return result != 0;
-}
-
-double from_rank0(double value) {
-  if (!distributed()) return value;
-  MPI_Bcast(&value, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
-  return value;
 }
 
 std::vector<double> summed(const std::vector<double>& values) {
@@ -93,9 +80,7 @@ int rank() { return 0; }
 int size() { return 1; }
 bool distributed() { return false; }
 double min_over_ranks(double value) { return value; }
-double max_over_ranks(double value) { return value; }
 bool any_rank(bool flag) { return flag; }
-double from_rank0(double value) { return value; }
 std::vector<double> summed(const std::vector<double>& values) { return values; }
 std::vector<std::int64_t> gathered(const std::vector<std::int64_t>& values) { return values; }
 void abort_all(int status) { std::exit(status); }

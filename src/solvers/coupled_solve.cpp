@@ -12,14 +12,19 @@
 
 namespace latfrac {
 
-void EquilibriumSolver::solve_coupled(double* rhs, std::int64_t n, int columns) {
-  ++counters_.solves;
-  if (n == 0) return;
+std::vector<std::int64_t> EquilibriumSolver::slipping_pairs() const {
   std::vector<std::int64_t> slipping;
   if (model_.has_friction()) {
     for (std::int64_t b = 0; b < model_.lattice.bond_count(); ++b)
       if (slides(model_.state(b)) && model_.contact_capable(b)) slipping.push_back(b);
   }
+  return slipping;
+}
+
+void EquilibriumSolver::solve_coupled(double* rhs, std::int64_t n, int columns) {
+  ++counters_.solves;
+  if (n == 0) return;
+  const std::vector<std::int64_t> slipping = slipping_pairs();
   if (slipping.size() > woodbury_limit) {
     ++counters_.coupled_solves;
     unsymmetric_solve(slipping, rhs, n, columns);
@@ -86,19 +91,27 @@ void EquilibriumSolver::woodbury_correction(const std::vector<std::int64_t>& sli
   }
   const Coupling coupling{cache.w, cache.v};
   if (rhs == nullptr) {
-    // The LU found K singular while A is not: (I + V' W) y = 0 gives K (W y) = 0, a motion
-    // that the slipping contacts leave free. Its largest unknown is held (the rule for
-    // singular stiffness, docs/robustness.md).
+    // Asked for the motion the slipping contacts leave free (sliding_mechanism): with
+    // (I + V' W) y = 0, K (W y) = 0. Its smallest singular value against its largest says
+    // how free; the motion's largest unknown is where to hold it.
     Eigen::JacobiSVD<Eigen::MatrixXd> svd(coupling.capacitance(), Eigen::ComputeFullV);
     const Vector motion = coupling.w * svd.matrixV().col(k - 1);
     Eigen::Index largest = 0;
     motion.cwiseAbs().maxCoeff(&largest);
-    throw SingularStiffness("the stiffness with " + std::to_string(k) +
-                                " slipping contacts is singular: a part slides freely on them",
-                            largest);
+    const double top = svd.singularValues()(0);
+    sliding_ = {top > 0 ? svd.singularValues()(k - 1) / top : 0.0, largest};
+    return;
   }
   Eigen::Map<Eigen::MatrixXd> x(rhs, n, columns);
   x -= coupling.w * cache.capacitance.solve(coupling.v_times(x));
+}
+
+void EquilibriumSolver::throw_sliding_mechanism(const std::vector<std::int64_t>& slipping,
+                                                std::int64_t n) {
+  woodbury_correction(slipping, nullptr, n, 0);
+  throw SingularStiffness("the stiffness with " + std::to_string(slipping.size()) +
+                              " slipping contacts is singular: a part slides freely on them",
+                          sliding_.largest);
 }
 
 // K = the symmetric stiffness (both triangles, assembled afresh: the factor has been
@@ -184,11 +197,11 @@ void EquilibriumSolver::factorize_unsymmetric(const std::vector<std::int64_t>& s
   lu.lu.factorize(lu.matrix);
   if (lu.lu.info() != Eigen::Success) {
     // Singular: a fresh factor of the symmetric part names a mechanism it has
-    // (SingularStiffness); else the slipping contacts made it (woodbury_correction).
+    // (SingularStiffness); else the slipping contacts made it.
     lu.matrix.resize(0, 0);
     factor_current_ = false;
     refactorize(Vector::Zero(n), 0.0);
-    woodbury_correction(slipping, nullptr, n, 0);
+    throw_sliding_mechanism(slipping, n);
   }
   lu_current_ = true;
     lu_factored_states_.resize(model_.pair_states().size());

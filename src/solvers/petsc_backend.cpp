@@ -98,7 +98,8 @@ class PetscBackend final : public LinearBackend {
 
  private:
   void destroy();
-  // Factorizes k0_ (a copy of k_'s values) with MUMPS and times it and one solve.
+  // Copies k_ into k0_ and factorizes it with MUMPS (its analysis kept from the first
+  // time); prices the factorization in solves for the refactorization rule.
   void factorize_current();
   void locate_mechanism(StiffnessMatrix& matrix, const std::string& what);
   // factorize_current() inside a solve; false: the stiffness has a mechanism now.
@@ -125,8 +126,8 @@ class PetscBackend final : public LinearBackend {
   CholeskyFactor locator_;
   WeakestPivot none_;
   // The refactorization rule: a fresh factorization costs `factor_in_solves_` solves with
-  // the factor (measured at the last one, rank 0's figure on every rank so that every
-  // rank decides alike); CG iterations since then are counted against it.
+  // the factor (from MUMPS's operation counts at the last one, the same on every rank);
+  // CG iterations since then are counted against it.
   double factor_in_solves_ = 0;
   Statistics statistics_;
   PetscInt extra_workspace_ = 35;  // MUMPS's ICNTL(14): percent over its workspace estimate

@@ -17,12 +17,8 @@ int size();  // 1 without MPI
 
 // The smallest value over the ranks.
 double min_over_ranks(double value);
-// The largest value over the ranks.
-double max_over_ranks(double value);
 // Whether any rank says yes.
 bool any_rank(bool flag);
-// Rank 0's value on every rank.
-double from_rank0(double value);
 // The sum over the ranks, entry by entry (the same length on every rank).
 std::vector<double> summed(const std::vector<double>& values);
 // Every rank's values, in rank order, on every rank.

@@ -191,6 +191,21 @@ class EquilibriumSolver {
   Mat3 pair_jacobian(std::int64_t bond) const;
   // Records the change of bond's Jacobian from `before`, while an LU is current.
   void note_lu_change(std::int64_t bond, const Mat3& before);
+  // The sliding contacts, in bond order (none without friction).
+  std::vector<std::int64_t> slipping_pairs() const;
+  // The motion that the slipping contacts leave (nearly) free, measured by
+  // woodbury_correction with rhs == nullptr on a fresh factor: the capacitance's smallest
+  // singular value over its largest, and the unknown the motion moves most.
+  struct SlidingMotion {
+    double ratio = 1;
+    Eigen::Index largest = -1;
+  };
+  SlidingMotion sliding_;
+  // Throws SingularStiffness at that motion's largest unknown.
+  [[noreturn]] void throw_sliding_mechanism(const std::vector<std::int64_t>& slipping,
+                                            std::int64_t n);
+  // Below this ratio a missed residual is blamed on a part that slides nearly freely.
+  static constexpr double sliding_mechanism_ratio = 1e-8;
   void woodbury_correction(const std::vector<std::int64_t>& slipping, double* rhs,
                            std::int64_t n, int columns);
   // The Woodbury correction's W = A^-1 U, V and the LU of I + V' W, kept while the factor
