@@ -102,3 +102,13 @@ TEST_CASE("Lattices that cannot be built are rejected with a message naming the 
   CHECK_THAT(message_of({3, 1.0, {10, 1.0, 10}, true}), Catch::Contains("y extent"));
   CHECK_THAT(message_of({4, 1.0, {10, 10, 10}, true}), Catch::Contains("lattice.dim"));
 }
+
+TEST_CASE("Sizes print in readable units, three digits, never in exponent form", "[lattice]") {
+  const double mib = 1024.0 * 1024.0;
+  CHECK(readable_bytes(512 * mib) == "512 MiB");
+  CHECK(readable_bytes(3.2 * 1024 * mib) == "3.2 GiB");
+  // 1010 MiB is 0.986 GiB (1010 / 1024 = 0.98633): with three digits 1010 would print
+  // as 1.01e+03.
+  CHECK(readable_bytes(1010 * mib) == "0.986 GiB");
+  CHECK(readable_bytes(999 * mib) == "999 MiB");
+}

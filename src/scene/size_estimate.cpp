@@ -78,7 +78,8 @@ std::string describe_ranks(const SizeEstimate& estimate, double available_bytes)
 std::string readable_bytes(double bytes) {
   const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB"};
   int unit = 0;
-  while (bytes >= 1024 && unit < 5) {
+  // From 1000 on, the next unit: three digits would print 1010 as "1.01e+03".
+  while (bytes >= 1000 && unit < 5) {
     bytes /= 1024;
     ++unit;
   }
