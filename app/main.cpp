@@ -217,7 +217,9 @@ int check_command(const std::string& problem, const std::vector<std::string>& se
   const double available = available_memory_bytes();
   if (available > 0) std::cout << "  available memory " << readable_bytes(available) << "\n";
   if (scene.solver.backend == LinearBackendKind::petsc) std::cout << describe_ranks(estimate, available);
-  if (const std::string refusal = memory_refusal(scene, estimate, available); !refusal.empty()) {
+  // With the petsc backend the memory needed depends on the ranks: describe_ranks says it.
+  if (const std::string refusal = memory_refusal(scene, estimate, available);
+      !refusal.empty() && scene.solver.backend == LinearBackendKind::cholmod) {
     std::cout << "note: run will refuse this problem without --force: " << refusal << "\n";
   }
   const auto missing = unsupported_effects(scene);
