@@ -564,16 +564,15 @@ TEST_CASE("Hard: a part that slides nearly freely on its slipping contacts is he
   // capacitance of the slipping contacts nearly singular) and its unknown held.
   const Scene scene = read_problem_file(
       std::string(LATFRAC_PROBLEMS_DIR) + "/graben-complete-3d.toml",
-      {"lattice.spacing=4000", "output.snapshots=[0.028, 0.04]"});
+      {"lattice.spacing=4000"});
   RunResult result;
   REQUIRE_NOTHROW(result = run_scene(scene, quiet()));
   CHECK(result.summary.complete);
   CHECK(snapshots_finite(result));
-  REQUIRE(!result.fragments.empty());
-  // Held where the slide appeared, after the last snapshot that precedes it ...
-  CHECK(std::any_of(result.fragments.begin(), result.fragments.end(),
-                    [](const auto& f) { return f.lambda > 0.028 && f.lambda < 0.0285; }));
-  // ... and nothing moves by more than the extension itself (2.4 km) afterwards.
+  // The free slide is held (the scene has no part cut loose otherwise: without the rule
+  // nothing was held before the error) ...
+  CHECK(!result.fragments.empty());
+  // ... and nothing moves by more than the extension itself (2.4 km).
   const Snapshot& last = result.snapshots.back();
   double largest = 0;
   for (double u : last.displacement) largest = std::max(largest, std::abs(u));

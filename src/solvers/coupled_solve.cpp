@@ -57,8 +57,8 @@ struct Coupling {
 
 }  // namespace
 
-void EquilibriumSolver::woodbury_correction(const std::vector<std::int64_t>& slipping,
-                                            double* rhs, std::int64_t n, int columns) {
+const EquilibriumSolver::WoodburyCache& EquilibriumSolver::woodbury_terms(
+    const std::vector<std::int64_t>& slipping, std::int64_t n) {
   const auto k = static_cast<Eigen::Index>(slipping.size());
   std::vector<std::vector<CouplingTerm>> couplings;
   std::vector<double> terms;  // the cache's key
@@ -69,49 +69,52 @@ void EquilibriumSolver::woodbury_correction(const std::vector<std::int64_t>& sli
                                  t.right.y(), t.right.z()});
   }
   WoodburyCache& cache = woodbury_;
-  if (!(cache.valid && cache.factor_version == factor_->version() && cache.w.rows() == n &&
-        cache.bonds == slipping && cache.terms == terms)) {
-    cache.w = Eigen::MatrixXd::Zero(n, k);
-    cache.v.assign(static_cast<std::size_t>(k), {});
-    for (Eigen::Index c = 0; c < k; ++c) {
-      const std::int64_t bond = slipping[c];
-      LinearBackend::Column u;
-      for (const CouplingTerm& term : couplings[c]) {
-        append_on_bond(bond, term.weight * term.left, u);
-        append_on_bond(bond, term.right, cache.v[c]);
-      }
-      for (const auto& [row, value] : u) cache.w(row, c) += value;
+  if (cache.valid && cache.factor_version == factor_->version() && cache.w.rows() == n &&
+      cache.bonds == slipping && cache.terms == terms)
+    return cache;
+  cache.w = Eigen::MatrixXd::Zero(n, k);
+  cache.v.assign(static_cast<std::size_t>(k), {});
+  for (Eigen::Index c = 0; c < k; ++c) {
+    const std::int64_t bond = slipping[c];
+    LinearBackend::Column u;
+    for (const CouplingTerm& term : couplings[c]) {
+      append_on_bond(bond, term.weight * term.left, u);
+      append_on_bond(bond, term.right, cache.v[c]);
     }
-    factor_->solve(cache.w.data(), n, static_cast<int>(k));
-    cache.capacitance = Coupling{cache.w, cache.v}.capacitance().partialPivLu();
-    cache.bonds = slipping;
-    cache.terms = std::move(terms);
-    cache.factor_version = factor_->version();
-    cache.valid = true;
+    for (const auto& [row, value] : u) cache.w(row, c) += value;
   }
+  factor_->solve(cache.w.data(), n, static_cast<int>(k));
+  cache.capacitance = Coupling{cache.w, cache.v}.capacitance().partialPivLu();
+  cache.bonds = slipping;
+  cache.terms = std::move(terms);
+  cache.factor_version = factor_->version();
+  cache.valid = true;
+  return cache;
+}
+
+void EquilibriumSolver::woodbury_correction(const std::vector<std::int64_t>& slipping,
+                                            double* rhs, std::int64_t n, int columns) {
+  const WoodburyCache& cache = woodbury_terms(slipping, n);
   const Coupling coupling{cache.w, cache.v};
-  if (rhs == nullptr) {
-    // Asked for the motion the slipping contacts leave free (sliding_mechanism): with
-    // (I + V' W) y = 0, K (W y) = 0. Its smallest singular value against its largest says
-    // how free; the motion's largest unknown is where to hold it.
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(coupling.capacitance(), Eigen::ComputeFullV);
-    const Vector motion = coupling.w * svd.matrixV().col(k - 1);
-    Eigen::Index largest = 0;
-    motion.cwiseAbs().maxCoeff(&largest);
-    const double top = svd.singularValues()(0);
-    sliding_ = {top > 0 ? svd.singularValues()(k - 1) / top : 0.0, largest};
-    return;
-  }
   Eigen::Map<Eigen::MatrixXd> x(rhs, n, columns);
   x -= coupling.w * cache.capacitance.solve(coupling.v_times(x));
 }
 
-void EquilibriumSolver::throw_sliding_mechanism(const std::vector<std::int64_t>& slipping,
-                                                std::int64_t n) {
-  woodbury_correction(slipping, nullptr, n, 0);
-  throw SingularStiffness("the stiffness with " + std::to_string(slipping.size()) +
-                              " slipping contacts is singular: a part slides freely on them",
-                          sliding_.largest);
+// With (I + V' W) y = 0, K (W y) = 0: the motion the slipping contacts leave free. The
+// capacitance's smallest singular value against its largest says how free; the motion's
+// largest unknown is where to hold it.
+EquilibriumSolver::SlidingMotion EquilibriumSolver::sliding_motion(
+    const std::vector<std::int64_t>& slipping, std::int64_t n) {
+  const WoodburyCache& cache = woodbury_terms(slipping, n);
+  const Coupling coupling{cache.w, cache.v};
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(coupling.capacitance(), Eigen::ComputeFullV);
+  const Eigen::Index k = cache.w.cols();
+  const Vector motion = coupling.w * svd.matrixV().col(k - 1);
+  SlidingMotion sliding;
+  motion.cwiseAbs().maxCoeff(&sliding.largest);
+  const double top = svd.singularValues()(0);
+  sliding.ratio = top > 0 ? svd.singularValues()(k - 1) / top : 0.0;
+  return sliding;
 }
 
 // K = the symmetric stiffness (both triangles, assembled afresh: the factor has been
@@ -201,7 +204,9 @@ void EquilibriumSolver::factorize_unsymmetric(const std::vector<std::int64_t>& s
     lu.matrix.resize(0, 0);
     factor_current_ = false;
     refactorize(Vector::Zero(n), 0.0);
-    throw_sliding_mechanism(slipping, n);
+    throw SingularStiffness("the stiffness with " + std::to_string(slipping.size()) +
+                                " slipping contacts is singular: a part slides freely on them",
+                            sliding_motion(slipping, n).largest);
   }
   lu_current_ = true;
     lu_factored_states_.resize(model_.pair_states().size());

@@ -377,15 +377,15 @@ void EquilibriumSolver::fresh_solve_missed(const Vector& free_displacement, doub
   // part (nearly) free to slide: the coupled stiffness is singular to rounding, which an
   // LU need not report. Held like any mechanism (docs/robustness.md).
   if (const std::vector<std::int64_t> slipping = slipping_pairs(); !slipping.empty()) {
-    woodbury_correction(slipping, nullptr, model_.dofs().free_count, 0);
-    if (sliding_.ratio < sliding_mechanism_ratio) {
+    const SlidingMotion sliding = sliding_motion(slipping, model_.dofs().free_count);
+    if (sliding.ratio < sliding_mechanism_ratio) {
       std::ostringstream message;
       message << std::scientific << std::setprecision(2) << "equilibrium at lambda " << lambda
               << ": the residual after a fresh factorization is " << residual
               << " of the load and " << slipping.size()
-              << " slipping contacts leave a motion of relative stiffness " << sliding_.ratio
+              << " slipping contacts leave a motion of relative stiffness " << sliding.ratio
               << ": a part slides (nearly) freely on them";
-      throw SingularStiffness(message.str(), sliding_.largest);
+      throw SingularStiffness(message.str(), sliding.largest);
     }
   }
   throw Error(ill_conditioned(free_displacement, lambda, residual));

@@ -18,7 +18,10 @@ source "$(dirname "$0")/events.sh"  # events FILE.h5: one line per event
 
 "$latfrac" run "$problem" -o "$work/cholmod" --quiet "${sets[@]}" --set solver.backend=cholmod ||
   { echo "FAIL: the cholmod run failed" >&2; exit 1; }
-"$mpiexec" --allow-run-as-root --oversubscribe -np "$ranks" -x OPENBLAS_NUM_THREADS=1 \
+# In a container Open MPI's shared-memory single copy (CMA, ptrace) may be refused;
+# copying through the shared buffers works everywhere.
+"$mpiexec" --allow-run-as-root --oversubscribe --mca btl_vader_single_copy_mechanism none \
+  -np "$ranks" -x OPENBLAS_NUM_THREADS=1 \
   "$latfrac" run "$problem" -o "$work/petsc" --quiet "${sets[@]}" --set solver.backend=petsc ||
   { echo "FAIL: the petsc run on $ranks ranks failed" >&2; exit 1; }
 a=$(ls "$work"/cholmod/*.h5) b=$(ls "$work"/petsc/*.h5)

@@ -193,17 +193,14 @@ class EquilibriumSolver {
   void note_lu_change(std::int64_t bond, const Mat3& before);
   // The sliding contacts, in bond order (none without friction).
   std::vector<std::int64_t> slipping_pairs() const;
-  // The motion that the slipping contacts leave (nearly) free, measured by
-  // woodbury_correction with rhs == nullptr on a fresh factor: the capacitance's smallest
-  // singular value over its largest, and the unknown the motion moves most.
+  // The motion that the slipping contacts leave (nearly) free, on a fresh factor: the
+  // capacitance's smallest singular value over its largest, and the unknown the motion
+  // moves most.
   struct SlidingMotion {
     double ratio = 1;
     Eigen::Index largest = -1;
   };
-  SlidingMotion sliding_;
-  // Throws SingularStiffness at that motion's largest unknown.
-  [[noreturn]] void throw_sliding_mechanism(const std::vector<std::int64_t>& slipping,
-                                            std::int64_t n);
+  SlidingMotion sliding_motion(const std::vector<std::int64_t>& slipping, std::int64_t n);
   // Below this ratio a missed residual is blamed on a part that slides nearly freely.
   static constexpr double sliding_mechanism_ratio = 1e-8;
   void woodbury_correction(const std::vector<std::int64_t>& slipping, double* rhs,
@@ -221,6 +218,9 @@ class EquilibriumSolver {
     bool valid = false;
   };
   WoodburyCache woodbury_;
+  // W, V and the capacitance's LU for these slipping contacts, from the cache when the
+  // factor and their coupling terms are the same, else solved afresh.
+  const WoodburyCache& woodbury_terms(const std::vector<std::int64_t>& slipping, std::int64_t n);
   void unsymmetric_solve(const std::vector<std::int64_t>& slipping, double* rhs,
                          std::int64_t n, int columns);
   void factorize_unsymmetric(const std::vector<std::int64_t>& slipping, std::int64_t n);

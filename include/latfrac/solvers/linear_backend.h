@@ -78,13 +78,10 @@ class LinearBackend {
   // What the backend did (benchmarks, docs/parallel.md); the cholmod backend counts
   // nothing here (EquilibriumSolver's SolverCounters count its calls).
   struct Statistics {
-    long factorizations = 0;   // fresh numeric factorizations, those made inside solve too
+    long factorizations = 0;  // fresh numeric factorizations, those made inside solve too
     double factor_seconds = 0;
-    long direct_solves = 0;     // solves with the factor alone (no update since it)
     long iterative_solves = 0;  // CG solves (updates since the factor)
     long iterations = 0;        // CG iterations in all
-    double solve_seconds = 0;
-    std::int64_t factor_entries = 0;  // of the last factorization, all ranks
   };
   virtual const Statistics& statistics() const {
     static const Statistics none;
