@@ -346,11 +346,33 @@ PairSwitch FrictionalContactLaw::next_switch_3d(const PairSprings& pair, PairSta
   if (pair.ks <= 0) return first;
   const Frame f = frame_of(n);
   if (state == PairState::closed) {
+    auto g = [&](int j, double s) {  // facet j's switch function at s
+      const Vec3 mj = facet_normal(f, j);
+      return pair.ks * mj.dot(du0 + s * du1 - m.anchor) + friction_kn * (dn0 + s * dn1);
+    };
     for (int j = 0; j < facets_; ++j) {
       const Vec3 mj = facet_normal(f, j);
       consider(pair.ks * mj.dot(du0 - m.anchor) + friction_kn * dn0,
                pair.ks * mj.dot(du1) + friction_kn * dn1, force_threshold, PairState::slip,
                cos_half_ * mj);
+    }
+    // The force leaves the cone at a corner (both facets there reach their limit together,
+    // as where a contact that stuck on an edge slips again): the first crossing is then
+    // rounding's choice. The force's rate decides instead, as a projection onto the cone
+    // would: on the corner's two facets, r = g_p m_p + g_q m_q with r the rate of the
+    // force relative to the corner; both parts positive slide on the edge, else the
+    // contact slides along the facet whose part is positive.
+    if (first.found() && first.to == PairState::slip) {
+      const int j = index_of(f, first.direction, false);
+      for (const int v : {j, j + 1}) {
+        const int other = v == j ? j - 1 : j + 1;
+        if (g(other, first.s) < -pair.kn * switch_tolerance_) continue;
+        const Vec3 rate = tangential(pair, du1) + (friction_ * pair.kn * dn1 / pair.ks) * corner(f, v);
+        const auto [gp, gq] = on_edge_facets(f, v, rate);
+        if (gp > 0 && gq > 0) first.to = PairState::slip_edge, first.direction = corner(f, v);
+        else first.direction = cos_half_ * facet_normal(f, gp > 0 ? v - 1 : v);
+        break;
+      }
     }
   } else if (state == PairState::slip) {
     const int i = index_of(f, m.slip_direction, false);

@@ -14,7 +14,7 @@ sets=("$@")
 rm -rf -- "$work" && mkdir -p -- "$work" || exit 99
 command -v h5dump > /dev/null || { echo "backend_case.sh: needs h5dump" >&2; exit 99; }
 
-source "$(dirname "$0")/events.sh"  # events FILE.h5: one line per event
+source "$(dirname "$0")/events.sh"  # events FILE.h5, same_events A B NAME_A NAME_B
 
 "$latfrac" run "$problem" -o "$work/cholmod" --quiet "${sets[@]}" --set solver.backend=cholmod ||
   { echo "FAIL: the cholmod run failed" >&2; exit 1; }
@@ -27,15 +27,4 @@ source "$(dirname "$0")/events.sh"  # events FILE.h5: one line per event
 a=$(ls "$work"/cholmod/*.h5) b=$(ls "$work"/petsc/*.h5)
 events "$a" > "$work/cholmod.txt"
 events "$b" > "$work/petsc.txt"
-count=$(wc -l < "$work/cholmod.txt")
-[[ $count -gt 0 ]] || { echo "FAIL: the cholmod run has no events" >&2; exit 1; }
-[[ $count == $(wc -l < "$work/petsc.txt") ]] ||
-  { echo "FAIL: $count events with cholmod, $(wc -l < "$work/petsc.txt") with petsc" >&2; exit 1; }
-paste -d ' ' "$work/cholmod.txt" "$work/petsc.txt" | awk '
-  function off(a, b) { d = a - b; if (d < 0) d = -d; m = a < 0 ? -a : a; n = b < 0 ? -b : b;
-                       if (n > m) m = n; return d > 1e-9 * m }
-  function rel(a, b) { d = a - b; if (d < 0) d = -d; m = a < 0 ? -a : a; return m > 0 ? d / m : d }
-  { if (rel($1, $6) > worst) worst = rel($1, $6) }
-  NF != 10 || $2 != $7 || $4 != $9 || $5 != $10 || off($1, $6) || off($3, $8) {
-    print "FAIL: events differ from event " NR ": cholmod " $1, $2, $3, $4, $5 ", petsc " $6, $7, $8, $9, $10 > "/dev/stderr"; exit 1 }
-  END { printf "%d events equal; largest relative difference of lambda %.2g\n", NR, worst }'
+same_events "$work/cholmod.txt" "$work/petsc.txt" cholmod petsc

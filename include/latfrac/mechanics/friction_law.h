@@ -43,6 +43,11 @@
 //   slip_edge: on edge i: t_force = kn dn n0 + mu kn (-dn) w_i (factor: kn n0 n0').
 // Switches (all affine in lambda):
 //   closed -> slip (facet j)    where ks m_j . (du - a) + c mu kn dn rises through 0;
+//                               at a corner (both facets there reach their limits
+//                               together) the force's rate relative to the corner,
+//                               on the two facets' normals, decides as a projection
+//                               would: the edge if both parts are positive, else the
+//                               facet whose part is positive;
 //   slip -> slip_edge           where the force, sliding along facet i, reaches an
 //                               adjacent facet's limit;
 //   slip -> closed              where the slip rate ks m_i . du' + c mu kn dn' < 0
