@@ -130,6 +130,7 @@ void EquilibriumSolver::unsymmetric_solve(const std::vector<std::int64_t>& slipp
     lu_current_ = false;
   if (!lu_current_) factorize_unsymmetric(slipping, n);
   Unsymmetric& lu = *unsymmetric_;
+  lu.lu.umfpackControl()(UMFPACK_IRSTEP) = lu_refinement_ ? 2 : 0;
   // The pairs changed since the factorization: dK = sum over them and the axes c of
   // G'(dJ e_c) (G' e_c)'; W = LU^-1 U is extended by the new columns only.
   if (lu_changes_solved_ < lu_changes_.size()) {

@@ -440,10 +440,24 @@ std::string EquilibriumSolver::ill_conditioned(const Vector& free_displacement, 
   return message.str();
 }
 
+namespace {
+
+// Sets the flag for a scope (the retry after a missed residual) and clears it after.
+struct LuRefinement {
+  bool& flag;
+  explicit LuRefinement(bool& f, bool on = true) : flag(f) { flag = on; }
+  ~LuRefinement() { flag = false; }
+  LuRefinement(const LuRefinement&) = delete;
+  LuRefinement& operator=(const LuRefinement&) = delete;
+};
+
+}  // namespace
+
 AffinePath EquilibriumSolver::checked_affine_path(double lambda) {
   AffinePath path = affine_path();
   if (relative_residual(path.at(lambda), lambda) <= options_.tolerance) return path;
   factor_current_ = false;
+  const LuRefinement refine(lu_refinement_);
   path = affine_path();
   const double fresh = relative_residual(path.at(lambda), lambda);
   if (fresh > options_.tolerance) fresh_solve_missed(path.at(lambda), lambda, fresh);
@@ -464,7 +478,9 @@ Vector EquilibriumSolver::checked_solve(double lambda) {
       }
     }
   }
+  const LuRefinement refine(lu_refinement_, false);
   for (int attempt = 0; attempt < 2; ++attempt) {
+    lu_refinement_ = attempt == 1;
     if (!factor_current_) refactorize(Vector::Zero(n), 0.0);
     update_loads();
     Vector u = load0_ + lambda * load1_;

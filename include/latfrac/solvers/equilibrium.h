@@ -221,6 +221,11 @@ class EquilibriumSolver {
   // W, V and the capacitance's LU for these slipping contacts, from the cache when the
   // factor and their coupling terms are the same, else solved afresh.
   const WoodburyCache& woodbury_terms(const std::vector<std::int64_t>& slipping, std::int64_t n);
+  // UMFPACK's iterative refinement (up to 2 steps, each a residual and a solve), on only
+  // for the fresh retry after an answer missed the tolerance: every answer is checked
+  // against the residual anyway, and without it the LU's solves cost a third as much
+  // (docs/benchmarks.md, "The LU's refinement").
+  bool lu_refinement_ = false;
   void unsymmetric_solve(const std::vector<std::int64_t>& slipping, double* rhs,
                          std::int64_t n, int columns);
   void factorize_unsymmetric(const std::vector<std::int64_t>& slipping, std::int64_t n);
