@@ -341,7 +341,8 @@ TEST_CASE("Friction in 3-D: a stick force at a corner of the cone slips as the p
     for (int o = 0; o < 8; ++o) {
       INFO("rate " << c << ", offset " << o);
       const Vec3 offset = (2e-16 * radius / ks) * unit(o + 0.25);
-      const PairSwitch change = law.next_switch(pair, PairState::closed, du0 + offset, du1, 0, 1, true);
+      const PairSwitch change =
+          law.next_switch(pair, PairState::closed, du0 + offset, du1, 0, 1, true);
       if (c == 3) {
         CHECK(!change.found());
         continue;
@@ -353,7 +354,8 @@ TEST_CASE("Friction in 3-D: a stick force at a corner of the cone slips as the p
         CHECK((change.direction - unit(index)).norm() < 1e-12);
       } else {
         CHECK(change.to == PairState::slip);
-        CHECK((change.direction - std::cos(std::numbers::pi / k) * unit(index + 0.5)).norm() < 1e-12);
+        const Vec3 expected = std::cos(std::numbers::pi / k) * unit(index + 0.5);
+        CHECK((change.direction - expected).norm() < 1e-12);
       }
     }
   }

@@ -367,10 +367,15 @@ PairSwitch FrictionalContactLaw::next_switch_3d(const PairSprings& pair, PairSta
       for (const int v : {j, j + 1}) {
         const int other = v == j ? j - 1 : j + 1;
         if (g(other, first.s) < -pair.kn * switch_tolerance_) continue;
-        const Vec3 rate = tangential(pair, du1) + (friction_ * pair.kn * dn1 / pair.ks) * corner(f, v);
+        const Vec3 rate =
+            tangential(pair, du1) + (friction_ * pair.kn * dn1 / pair.ks) * corner(f, v);
         const auto [gp, gq] = on_edge_facets(f, v, rate);
-        if (gp > 0 && gq > 0) first.to = PairState::slip_edge, first.direction = corner(f, v);
-        else first.direction = cos_half_ * facet_normal(f, gp > 0 ? v - 1 : v);
+        if (gp > 0 && gq > 0) {
+          first.to = PairState::slip_edge;
+          first.direction = corner(f, v);
+        } else {
+          first.direction = cos_half_ * facet_normal(f, gp > 0 ? v - 1 : v);
+        }
         break;
       }
     }
