@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numbers>
-#include <limits>
 #include <set>
 #include <utility>
 #include <vector>

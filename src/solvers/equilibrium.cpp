@@ -442,10 +442,11 @@ std::string EquilibriumSolver::ill_conditioned(const Vector& free_displacement, 
 
 namespace {
 
-// Sets the flag for a scope (the retry after a missed residual) and clears it after.
+// Sets the flag for a scope (on for the retry after a missed residual) and clears it
+// after, also when the retry throws.
 struct LuRefinement {
   bool& flag;
-  explicit LuRefinement(bool& f, bool on = true) : flag(f) { flag = on; }
+  LuRefinement(bool& f, bool on) : flag(f) { flag = on; }
   ~LuRefinement() { flag = false; }
   LuRefinement(const LuRefinement&) = delete;
   LuRefinement& operator=(const LuRefinement&) = delete;
@@ -457,7 +458,7 @@ AffinePath EquilibriumSolver::checked_affine_path(double lambda) {
   AffinePath path = affine_path();
   if (relative_residual(path.at(lambda), lambda) <= options_.tolerance) return path;
   factor_current_ = false;
-  const LuRefinement refine(lu_refinement_);
+  const LuRefinement refine(lu_refinement_, true);
   path = affine_path();
   const double fresh = relative_residual(path.at(lambda), lambda);
   if (fresh > options_.tolerance) fresh_solve_missed(path.at(lambda), lambda, fresh);
@@ -478,9 +479,8 @@ Vector EquilibriumSolver::checked_solve(double lambda) {
       }
     }
   }
-  const LuRefinement refine(lu_refinement_, false);
   for (int attempt = 0; attempt < 2; ++attempt) {
-    lu_refinement_ = attempt == 1;
+    const LuRefinement refine(lu_refinement_, attempt == 1);
     if (!factor_current_) refactorize(Vector::Zero(n), 0.0);
     update_loads();
     Vector u = load0_ + lambda * load1_;

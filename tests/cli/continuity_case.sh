@@ -3,9 +3,9 @@
 # problem's data away from genuine branch points: a problem run as given and with one
 # datum changed at the level of rounding (each KEY=VALUE given, say gravity.g 1e-13, 1e-12
 # and -1e-11 relative away) must give the same event list (the same bonds, modes,
-# cascades and order; lambda and f to 1e-9 relative). A decision left to rounding, such as which facet of the friction cone a
-# contact at a corner slips on (docs/robustness.md), fails it: one such decision moved a
-# later break by 1.6e-4 in lambda.
+# cascades and order; lambda and f to 1e-9 relative). A decision left to rounding, such
+# as which facet of the friction cone a contact at a corner slips on (docs/robustness.md),
+# fails it: one such decision moved a later break by 1.6e-4 in lambda.
 #
 # Usage: continuity_case.sh LATFRAC WORKDIR KEY=VALUE[,KEY=VALUE...] PROBLEM [--set ...]
 # Needs h5dump (hdf5-tools), as scripts/event-lists.sh does.

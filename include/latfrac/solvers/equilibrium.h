@@ -223,8 +223,8 @@ class EquilibriumSolver {
   const WoodburyCache& woodbury_terms(const std::vector<std::int64_t>& slipping, std::int64_t n);
   // UMFPACK's iterative refinement (up to 2 steps, each a residual and a solve), on only
   // for the fresh retry after an answer missed the tolerance: every answer is checked
-  // against the residual anyway, and without it the LU's solves cost a third as much
-  // (docs/benchmarks.md, "The LU's refinement").
+  // against the residual anyway, and without it a solve is one pair of triangular
+  // solves, not up to three and two residuals (docs/benchmarks.md, "The LU's refinement").
   bool lu_refinement_ = false;
   void unsymmetric_solve(const std::vector<std::int64_t>& slipping, double* rhs,
                          std::int64_t n, int columns);
