@@ -143,10 +143,9 @@ PathStresses FailureEvaluator::path_stresses(const Model& model, const Vector& a
                                              const Vector& per_lambda, double sign) const {
   PathStresses path{at_zero, sign * per_lambda, {}, {}};
   if (uses_tensor_) {
+    // On an affine path the law is linear, and so is the virial in the displacement.
     path.stress_at_zero = node_stresses(model, at_zero);
-    path.stress_per_unit = node_stresses(model, at_zero + per_lambda);
-    for (std::size_t k = 0; k < path.stress_per_unit.size(); ++k)
-      path.stress_per_unit[k] = sign * (path.stress_per_unit[k] - path.stress_at_zero[k]);
+    path.stress_per_unit = node_stresses(model, sign * per_lambda);
   }
   return path;
 }

@@ -94,10 +94,19 @@ void EquilibriumState::resolve(double lambda) {
     path_valid_ = false;
     return;
   }
-  state_ = holding_singular(lambda, [&] { return solver_.checked_solve(lambda); });
+  if (paths_wanted_) {
+    // The event loop asks for the path at this lambda next: one solve with both load
+    // columns gives it, and the state on it, instead of a solve for the state and another
+    // for the path.
+    path_ = holding_singular(lambda, [&] { return solver_.checked_affine_path(lambda); });
+    path_valid_ = true;
+    state_ = path_.at(lambda);
+  } else {
+    state_ = holding_singular(lambda, [&] { return solver_.checked_solve(lambda); });
+    path_valid_ = false;
+  }
   state_lambda_ = lambda;
   state_valid_ = true;
-  path_valid_ = false;
 }
 
 void EquilibriumState::hold(const std::vector<FragmentDetector::LoosePart>& parts, double lambda,

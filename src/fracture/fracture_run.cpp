@@ -179,6 +179,7 @@ void FractureRun::fixed_steps() {
 void FractureRun::event_driven() {
   BreakSource breaks(equilibrium_, evaluator_, breaking_);
   PairSwitchSource switches(equilibrium_, settling_, breaking_);
+  equilibrium_.want_paths(true);
   breaking_.between_groups(
       [&](double lambda, std::int64_t cascade) { between_events(lambda, 0, &switches, cascade); });
   double from = 0;

@@ -96,6 +96,25 @@ void write_checkpoint_group(hid_t file, const RunCheckpoint& c) {
     hdf5::write_dataset(file, group + "/lu_change_value", factor.lu_change_values,
                         {factor.lu_change_values.size()});
   }
+  if (!factor.woodbury_bonds.empty()) {
+    const hsize_t k = factor.woodbury_bonds.size();
+    hdf5::write_dataset(file, group + "/woodbury_bond", factor.woodbury_bonds, {k});
+    hdf5::write_dataset(file, group + "/woodbury_term_count", factor.woodbury_term_counts, {k});
+    hdf5::write_dataset(file, group + "/woodbury_term", factor.woodbury_terms,
+                        {factor.woodbury_terms.size()});
+    hdf5::write_dataset(file, group + "/woodbury_w", factor.woodbury_w,
+                        {k, factor.woodbury_w.size() / k});
+    hdf5::write_attribute(file, group, "woodbury_pending_updates",
+                          factor.woodbury_pending_updates);
+    hdf5::write_dataset(file, group + "/woodbury_pending_start", factor.woodbury_pending_start,
+                        {factor.woodbury_pending_start.size()});
+    hdf5::write_dataset(file, group + "/woodbury_pending_index", factor.woodbury_pending_index,
+                        {factor.woodbury_pending_index.size()});
+    hdf5::write_dataset(file, group + "/woodbury_pending_value", factor.woodbury_pending_value,
+                        {factor.woodbury_pending_value.size()});
+    hdf5::write_dataset(file, group + "/woodbury_pending_sign", factor.woodbury_pending_sign,
+                        {factor.woodbury_pending_sign.size()});
+  }
 
   const hsize_t bonds = c.pair_states.size();
   std::vector<std::uint8_t> sets;
@@ -179,6 +198,30 @@ RunCheckpoint read_checkpoint_group(hid_t file) {
                                                               {whole("/lu_change_bond")});
     factor.lu_change_values = hdf5::read_dataset<double>(file, group + "/lu_change_value",
                                                          {whole("/lu_change_value")});
+  }
+  if (hdf5::exists(file, group + "/woodbury_bond")) {
+    auto whole = [&](const std::string& name) { return hsize_t{length_of(file, group + name)}; };
+    factor.woodbury_bonds =
+        hdf5::read_dataset<std::int64_t>(file, group + "/woodbury_bond", {whole("/woodbury_bond")});
+    factor.woodbury_term_counts = hdf5::read_dataset<std::int64_t>(
+        file, group + "/woodbury_term_count", {whole("/woodbury_term_count")});
+    factor.woodbury_terms =
+        hdf5::read_dataset<double>(file, group + "/woodbury_term", {whole("/woodbury_term")});
+    const hdf5::Shape w_shape = hdf5::dataset_shape(file, group + "/woodbury_w");
+    if (w_shape.size() != 2 || w_shape[0] != factor.woodbury_bonds.size())
+      throw InputError("dataset " + group + "/woodbury_w is " + hdf5::shape_text(w_shape) +
+                       ", expected " + std::to_string(factor.woodbury_bonds.size()) + " x ?");
+    factor.woodbury_w = hdf5::read_dataset<double>(file, group + "/woodbury_w", w_shape);
+    factor.woodbury_pending_updates =
+        hdf5::read_attribute<std::int64_t>(file, group, "woodbury_pending_updates");
+    factor.woodbury_pending_start = hdf5::read_dataset<std::int64_t>(
+        file, group + "/woodbury_pending_start", {whole("/woodbury_pending_start")});
+    factor.woodbury_pending_index = hdf5::read_dataset<std::int64_t>(
+        file, group + "/woodbury_pending_index", {whole("/woodbury_pending_index")});
+    factor.woodbury_pending_value = hdf5::read_dataset<double>(
+        file, group + "/woodbury_pending_value", {whole("/woodbury_pending_value")});
+    factor.woodbury_pending_sign = hdf5::read_dataset<double>(
+        file, group + "/woodbury_pending_sign", {whole("/woodbury_pending_sign")});
   }
 
   const hdf5::Shape sets_shape = hdf5::dataset_shape(file, group + "/switch_sets");

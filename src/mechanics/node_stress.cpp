@@ -5,27 +5,37 @@
 namespace latfrac {
 namespace {
 
-// Per node, the sum over its intact bonds of arm (x) force.
+// Per node, the sum over its intact bonds of arm (x) force. In 2-D only the x-z block is
+// summed: the y row and column stay zero, and the sweep runs after every event.
 std::vector<Mat3> bond_dyads(const Model& model, const Vector& displacement) {
   const Lattice& lattice = model.lattice;
   std::vector<Mat3> sum(lattice.node_count(), Mat3::Zero());
+  const bool plane = lattice.dim == 2;
+  auto add = [plane](Mat3& to, const Vec3& arm, const Vec3& t) {
+    if (!plane) {
+      to.noalias() += arm * t.transpose();
+      return;
+    }
+    to(0, 0) += arm.x() * t.x();
+    to(0, 2) += arm.x() * t.z();
+    to(2, 0) += arm.z() * t.x();
+    to(2, 2) += arm.z() * t.z();
+  };
   for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
     if (!model.intact(b)) continue;
     const Bond& bond = lattice.bonds[b];
-    const Vec3 du = model.node_displacement(displacement, bond.j) -
-                    model.node_displacement(displacement, bond.i);
-    const Vec3 t = model.bond_law().tension(model.springs(b), PairState::intact, du);
+    const Vec3 t = model.bond_law().tension(model.springs(b), PairState::intact,
+                                            model.bond_displacement(displacement, b));
     if (lattice.is_random()) {
       // t acts on i, -t on j; each node's arm reaches to the facet's centroid.
       const Vec3& centroid = lattice.bond_facet_centroid[b];
-      sum[bond.i] += (centroid - lattice.positions[bond.i]) * t.transpose();
-      sum[bond.j] += (lattice.positions[bond.j] - centroid) * t.transpose();
+      add(sum[bond.i], centroid - lattice.positions[bond.i], t);
+      add(sum[bond.j], lattice.positions[bond.j] - centroid, t);
       continue;
     }
     const Vec3 d0 = lattice.bond_direction[b] * lattice.bond_length[b];
-    const Mat3 dyad = d0 * t.transpose();
-    sum[bond.i] += dyad;
-    sum[bond.j] += dyad;
+    add(sum[bond.i], d0, t);
+    add(sum[bond.j], d0, t);
   }
   return sum;
 }

@@ -26,12 +26,16 @@ void EquilibriumSolver::solve_coupled(double* rhs, std::int64_t n, int columns) 
   if (n == 0) return;
   const std::vector<std::int64_t> slipping = slipping_pairs();
   if (slipping.size() > woodbury_limit) {
+    woodbury_.valid = false;
     ++counters_.coupled_solves;
     unsymmetric_solve(slipping, rhs, n, columns);
     return;
   }
   factor_->solve(rhs, n, columns);
-  if (slipping.empty()) return;
+  if (slipping.empty()) {
+    woodbury_.valid = false;  // no W to carry along the factor updates to come
+    return;
+  }
   ++counters_.coupled_solves;
   woodbury_correction(slipping, rhs, n, columns);
 }
@@ -60,36 +64,100 @@ struct Coupling {
 const EquilibriumSolver::WoodburyCache& EquilibriumSolver::woodbury_terms(
     const std::vector<std::int64_t>& slipping, std::int64_t n) {
   const auto k = static_cast<Eigen::Index>(slipping.size());
-  std::vector<std::vector<CouplingTerm>> couplings;
-  std::vector<double> terms;  // the cache's key
-  for (const std::int64_t bond : slipping) {
-    couplings.push_back(model_.law_of(bond)->coupling_terms(model_.springs(bond), model_.state(bond)));
-    for (const CouplingTerm& t : couplings.back())
-      terms.insert(terms.end(), {t.weight, t.left.x(), t.left.y(), t.left.z(), t.right.x(),
-                                 t.right.y(), t.right.z()});
+  std::vector<std::vector<double>> terms(slipping.size());  // the cache's key
+  for (std::size_t c = 0; c < slipping.size(); ++c) {
+    const std::int64_t bond = slipping[c];
+    for (const CouplingTerm& t :
+         model_.law_of(bond)->coupling_terms(model_.springs(bond), model_.state(bond)))
+      terms[c].insert(terms[c].end(), {t.weight, t.left.x(), t.left.y(), t.left.z(),
+                                       t.right.x(), t.right.y(), t.right.z()});
   }
   WoodburyCache& cache = woodbury_;
-  if (cache.valid && cache.factor_version == factor_->version() && cache.w.rows() == n &&
-      cache.bonds == slipping && cache.terms == terms)
+  const std::uint64_t version = factor_->version();
+  const bool followed =
+      cache.valid && cache.w.rows() == n &&
+      cache.factor_version + static_cast<std::uint64_t>(cache.pending_updates) == version;
+  if (followed && cache.pending.empty() && cache.bonds == slipping && cache.terms == terms)
     return cache;
-  cache.w = Eigen::MatrixXd::Zero(n, k);
-  cache.v.assign(static_cast<std::size_t>(k), {});
-  for (Eigen::Index c = 0; c < k; ++c) {
-    const std::int64_t bond = slipping[c];
-    LinearBackend::Column u;
-    for (const CouplingTerm& term : couplings[c]) {
-      append_on_bond(bond, term.weight * term.left, u);
-      append_on_bond(bond, term.right, cache.v[c]);
-    }
-    for (const auto& [row, value] : u) cache.w(row, c) += value;
+  // A contact that slides as before keeps its column, brought to the factor; the others
+  // are solved afresh, in the same solve as the factor updates' columns.
+  std::vector<Eigen::Index> kept(slipping.size(), -1), fresh;
+  for (std::size_t c = 0; c < slipping.size(); ++c) {
+    for (std::size_t j = 0; followed && j < cache.bonds.size() && kept[c] < 0; ++j)
+      if (cache.bonds[j] == slipping[c] && cache.terms[j] == terms[c])
+        kept[c] = static_cast<Eigen::Index>(j);
+    if (kept[c] < 0) fresh.push_back(static_cast<Eigen::Index>(c));
   }
-  factor_->solve(cache.w.data(), n, static_cast<int>(k));
-  cache.capacitance = Coupling{cache.w, cache.v}.capacitance().partialPivLu();
+  const auto r = static_cast<Eigen::Index>(followed ? cache.pending.size() : 0);
+  const auto m = static_cast<Eigen::Index>(fresh.size());
+  Eigen::MatrixXd z = Eigen::MatrixXd::Zero(n, r + m);
+  for (Eigen::Index c = 0; c < r; ++c)
+    for (const auto& [row, value] : cache.pending[c]) z(row, c) += value;
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const std::vector<double>& t = terms[fresh[i]];
+    LinearBackend::Column column;
+    for (std::size_t q = 0; q + 6 < t.size(); q += 7)
+      append_on_bond(slipping[fresh[i]], t[q] * Vec3(t[q + 1], t[q + 2], t[q + 3]), column);
+    for (const auto& [row, value] : column) z(row, r + i) += value;
+  }
+  if (r + m > 0) factor_->solve(z.data(), n, static_cast<int>(r + m));
+  Eigen::MatrixXd w = Eigen::MatrixXd::Zero(n, k);
+  if (r > 0) {
+    // A' = A + C S C' and A W = U: A' (W - A'^-1 C S C' W) = U, for the kept columns.
+    std::vector<Eigen::Index> from;
+    for (std::size_t c = 0; c < slipping.size(); ++c)
+      if (kept[c] >= 0) from.push_back(kept[c]);
+    const Eigen::MatrixXd old = cache.w(Eigen::all, from);
+    Eigen::MatrixXd sctw = Eigen::MatrixXd::Zero(r, old.cols());
+    for (Eigen::Index c = 0; c < r; ++c)
+      for (const auto& [row, value] : cache.pending[c])
+        sctw.row(c) += (cache.pending_sign[c] * value) * old.row(row);
+    const Eigen::MatrixXd moved = old - z.leftCols(r) * sctw;
+    Eigen::Index next = 0;
+    for (std::size_t c = 0; c < slipping.size(); ++c)
+      if (kept[c] >= 0) w.col(static_cast<Eigen::Index>(c)) = moved.col(next++);
+  } else {
+    for (std::size_t c = 0; c < slipping.size(); ++c)
+      if (kept[c] >= 0) w.col(static_cast<Eigen::Index>(c)) = cache.w.col(kept[c]);
+  }
+  for (Eigen::Index i = 0; i < m; ++i) w.col(fresh[i]) = z.col(r + i);
+  cache.w = std::move(w);
   cache.bonds = slipping;
   cache.terms = std::move(terms);
-  cache.factor_version = factor_->version();
+  cache.factor_version = version;
+  cache.pending.clear();
+  cache.pending_sign.clear();
+  cache.pending_updates = 0;
   cache.valid = true;
+  finish_woodbury(cache);
   return cache;
+}
+
+void EquilibriumSolver::finish_woodbury(WoodburyCache& cache) const {
+  cache.v.assign(cache.bonds.size(), {});
+  for (std::size_t c = 0; c < cache.bonds.size(); ++c) {
+    const std::vector<double>& t = cache.terms[c];
+    for (std::size_t q = 0; q + 6 < t.size(); q += 7)
+      append_on_bond(cache.bonds[c], Vec3(t[q + 4], t[q + 5], t[q + 6]), cache.v[c]);
+  }
+  cache.capacitance = Coupling{cache.w, cache.v}.capacitance().partialPivLu();
+}
+
+void EquilibriumSolver::follow_factor_update(const std::vector<LinearBackend::Column>& columns,
+                                             bool downdate) {
+  WoodburyCache& cache = woodbury_;
+  if (!cache.valid) return;
+  const std::uint64_t before = factor_->version() - 1;
+  if (cache.factor_version + static_cast<std::uint64_t>(cache.pending_updates) != before ||
+      static_cast<Eigen::Index>(cache.pending.size() + columns.size()) >= cache.w.cols()) {
+    cache.valid = false;
+    return;
+  }
+  ++cache.pending_updates;
+  for (const LinearBackend::Column& column : columns) {
+    cache.pending.push_back(column);
+    cache.pending_sign.push_back(downdate ? -1.0 : 1.0);
+  }
 }
 
 void EquilibriumSolver::woodbury_correction(const std::vector<std::int64_t>& slipping,

@@ -87,6 +87,26 @@ EquilibriumSolver::History EquilibriumSolver::history() const {
         for (int c = 0; c < 3; ++c) h.lu_change_values.push_back(change(r, c));
     }
   }
+  const WoodburyCache& w = woodbury_;
+  if (h.factor_current && w.valid && w.w.rows() == model_.dofs().free_count &&
+      w.factor_version + static_cast<std::uint64_t>(w.pending_updates) == factor_->version()) {
+    h.woodbury_bonds = w.bonds;
+    for (const std::vector<double>& terms : w.terms) {
+      h.woodbury_term_counts.push_back(static_cast<std::int64_t>(terms.size()));
+      h.woodbury_terms.insert(h.woodbury_terms.end(), terms.begin(), terms.end());
+    }
+    h.woodbury_w.assign(w.w.data(), w.w.data() + w.w.size());
+    h.woodbury_pending_updates = w.pending_updates;
+    h.woodbury_pending_start.push_back(0);
+    for (std::size_t c = 0; c < w.pending.size(); ++c) {
+      for (const auto& [row, value] : w.pending[c]) {
+        h.woodbury_pending_index.push_back(row);
+        h.woodbury_pending_value.push_back(value);
+      }
+      h.woodbury_pending_start.push_back(static_cast<std::int64_t>(h.woodbury_pending_index.size()));
+      h.woodbury_pending_sign.push_back(w.pending_sign[c]);
+    }
+  }
   h.solution_valid = last_solution_valid_;
   if (last_solution_valid_) {
     h.solution_lambda = last_lambda_;
@@ -115,6 +135,7 @@ void EquilibriumSolver::rebuild(const History& history, const std::vector<PairSt
   }
   loads_current_ = false;
   if (history.lu_current) rebuild_lu(history);
+  if (!history.woodbury_bonds.empty()) rebuild_woodbury(history);
   if (history.solution_valid) {
     last_solution_ = history.solution;
     last_lambda_ = history.solution_lambda;
@@ -122,6 +143,57 @@ void EquilibriumSolver::rebuild(const History& history, const std::vector<PairSt
     pending_forces_ = history.pending_forces;
   }
   counters_ = {};
+}
+
+// The Woodbury terms as the run had carried them along: W, and the factor updates it has
+// not followed yet (the rebuilt factor has had them).
+void EquilibriumSolver::rebuild_woodbury(const History& history) {
+  const std::size_t k = history.woodbury_bonds.size();
+  const std::int64_t n = model_.dofs().free_count;
+  std::size_t values = 0;
+  for (std::int64_t count : history.woodbury_term_counts) values += static_cast<std::size_t>(count);
+  const std::size_t columns = history.woodbury_pending_sign.size();
+  if (history.woodbury_term_counts.size() != k || history.woodbury_terms.size() != values ||
+      history.woodbury_w.size() != k * static_cast<std::size_t>(n) ||
+      history.woodbury_pending_start.size() != columns + 1 ||
+      history.woodbury_pending_index.size() != history.woodbury_pending_value.size() ||
+      static_cast<std::size_t>(history.woodbury_pending_start.back()) !=
+          history.woodbury_pending_index.size() ||
+      history.woodbury_pending_updates < 0 ||
+      static_cast<std::uint64_t>(history.woodbury_pending_updates) > factor_->version())
+    throw Error("a checkpoint's Woodbury terms do not fit together");
+  for (std::int64_t bond : history.woodbury_bonds)
+    if (bond < 0 || bond >= model_.lattice.bond_count())
+      throw Error("a checkpoint's Woodbury terms name a bond the lattice does not have");
+  WoodburyCache& cache = woodbury_;
+  cache.bonds = history.woodbury_bonds;
+  cache.terms.clear();
+  std::size_t at = 0;
+  for (std::int64_t count : history.woodbury_term_counts) {
+    cache.terms.emplace_back(history.woodbury_terms.begin() + static_cast<std::ptrdiff_t>(at),
+                             history.woodbury_terms.begin() +
+                                 static_cast<std::ptrdiff_t>(at + static_cast<std::size_t>(count)));
+    at += static_cast<std::size_t>(count);
+  }
+  cache.w = Eigen::Map<const Eigen::MatrixXd>(history.woodbury_w.data(), n,
+                                              static_cast<Eigen::Index>(k));
+  cache.pending.assign(columns, {});
+  cache.pending_sign = history.woodbury_pending_sign;
+  for (std::size_t c = 0; c < columns; ++c) {
+    const std::int64_t first = history.woodbury_pending_start[c];
+    const std::int64_t last = history.woodbury_pending_start[c + 1];
+    if (first < 0 || last < first) throw Error("a checkpoint's Woodbury columns are out of order");
+    for (auto e = static_cast<std::size_t>(first); e < static_cast<std::size_t>(last); ++e) {
+      const std::int64_t row = history.woodbury_pending_index[e];
+      if (row < 0 || row >= n) throw Error("a checkpoint's Woodbury column leaves the free dofs");
+      cache.pending[c].push_back({row, history.woodbury_pending_value[e]});
+    }
+  }
+  cache.pending_updates = history.woodbury_pending_updates;
+  cache.factor_version =
+      factor_->version() - static_cast<std::uint64_t>(history.woodbury_pending_updates);
+  cache.valid = true;
+  finish_woodbury(cache);
 }
 
 // The LU as the run had it: factorized with the model in the states and senses of slip
@@ -185,6 +257,7 @@ void EquilibriumSolver::update_factor(std::int64_t bond, const std::vector<RankO
   }
   ++counters_.factor_updates;
   ++updates_since_factorization_;
+  follow_factor_update(columns, downdate);
   if (last_solution_valid_) record_force_change(bond, terms, downdate);
 }
 

@@ -64,6 +64,10 @@ class EquilibriumState {
   // carried along again: each commit closes a stretch of affine path, or the jump at
   // lambda that a change makes (whose work the trapezoidal rule in dn approximates).
   void change_pairs(const std::vector<PairChange>& changes, double lambda, const Vector& before);
+  // Event-driven runs read the affine path after every change: then each change solves for
+  // the path at once and takes the state on it (one solve with two load columns instead
+  // of one for the state and one for the path).
+  void want_paths(bool wanted) { paths_wanted_ = wanted; }
   // Carries every frictional contact's memory along to the equilibrium at lambda (the run
   // calls it at its end).
   void commit_contacts(double lambda);
@@ -106,6 +110,7 @@ class EquilibriumState {
   std::optional<RelaxationSolver> relaxation_;  // set when the scene asks for relaxation
   AffinePath path_;
   bool path_valid_ = false;  // path_ describes the current model
+  bool paths_wanted_ = false;
   Vector state_;             // free displacement at state_lambda_ (also the next warm start)
   double state_lambda_ = 0;
   bool state_valid_ = false;

@@ -117,6 +117,22 @@ class EquilibriumSolver {
     std::vector<double> lu_directions;
     std::vector<std::int64_t> lu_change_bonds;
     std::vector<double> lu_change_values;
+    // With friction, the Woodbury terms of the slipping contacts as the run carried them
+    // along (empty: none kept): their bonds, the number of values of each one's coupling
+    // terms and those values (7 per term: weight, left, right), W (free dofs x bonds,
+    // column by column), and the factor updates W has not followed yet: how many, and
+    // their columns (column c's entries are pending_index/value from pending_start[c] to
+    // pending_start[c + 1]) with their signs. Solved afresh, W would round differently
+    // from the columns the factor updates carried along.
+    std::vector<std::int64_t> woodbury_bonds;
+    std::vector<std::int64_t> woodbury_term_counts;
+    std::vector<double> woodbury_terms;
+    std::vector<double> woodbury_w;
+    std::int64_t woodbury_pending_updates = 0;
+    std::vector<std::int64_t> woodbury_pending_start;
+    std::vector<std::int64_t> woodbury_pending_index;
+    std::vector<double> woodbury_pending_value;
+    std::vector<double> woodbury_pending_sign;
   };
   History history() const;
   // With the model in history.factored_states (when the factor was current) and in its
@@ -124,6 +140,7 @@ class EquilibriumSolver {
   // and leaves the model in `states`. The counters start again from zero.
   void rebuild(const History& history, const std::vector<PairState>& states);
   void rebuild_lu(const History& history);
+  void rebuild_woodbury(const History& history);
 
   const SolverCounters& counters() const { return counters_; }
   StiffnessMatrix& stiffness() { return stiffness_; }
@@ -168,10 +185,12 @@ class EquilibriumSolver {
   // while contacts slip, with their nonsymmetric parts K = A + U V' (A the factor's
   // matrix; one column of U and V per slipping contact): up to woodbury_limit slipping
   // contacts, the Sherman-Morrison-Woodbury correction x = y - W (I + V' W)^-1 V' y with
-  // y = A^-1 rhs and W = A^-1 U (one solve with as many columns as contacts slip);
-  // beyond, an LU of K (UMFPACK), whose cost does not grow with their number.
+  // y = A^-1 rhs and W = A^-1 U (kept along the factor updates: WoodburyCache); beyond,
+  // an LU of K (UMFPACK), whose cost does not grow with their number. The limit was 16
+  // while W was solved afresh after every update; following W made the Woodbury route
+  // cheaper than the LU up to about a hundred (docs/benchmarks.md).
   void solve_coupled(double* rhs, std::int64_t n, int columns);
-  static constexpr std::size_t woodbury_limit = 16;
+  static constexpr std::size_t woodbury_limit = 128;
   // The LU (coupled_solve.cpp): analysed once per set of supports (the pattern of every
   // bond's blocks). Like the Cholesky factor it is not redone at every change: the pairs
   // that changed since it was factorized (state, or sense of slip) are kept as their
@@ -205,22 +224,35 @@ class EquilibriumSolver {
   static constexpr double sliding_mechanism_ratio = 1e-8;
   void woodbury_correction(const std::vector<std::int64_t>& slipping, double* rhs,
                            std::int64_t n, int columns);
-  // The Woodbury correction's W = A^-1 U, V and the LU of I + V' W, kept while the factor
-  // (its version) and the slipping contacts' coupling terms stay the same: a run solves
-  // several times between two changes (the check, the path's two columns, the settling).
+  // The Woodbury correction's W = A^-1 U, V and the LU of I + V' W, kept while the
+  // slipping contacts' coupling terms stay the same: a run solves several times between
+  // two changes (the check, the path's two columns, the settling). The factor updates
+  // since W was exact (A' = A + C S C', S = +-1 per column) are kept too, and W is brought
+  // to the new factor when it is next needed: W' = W - A'^-1 C S C' W (exact: A' W' = U),
+  // one solve with C's columns, not one per slipping contact. A contact that starts
+  // slipping adds its column, solved alone.
   struct WoodburyCache {
-    std::uint64_t factor_version = 0;
+    std::uint64_t factor_version = 0;  // the factor W = A^-1 U belongs to
     std::vector<std::int64_t> bonds;
-    std::vector<double> terms;  // each contact's coupling terms, flattened
+    std::vector<std::vector<double>> terms;  // each contact's coupling terms, flattened
     Eigen::MatrixXd w;
     std::vector<LinearBackend::Column> v;
     Eigen::PartialPivLU<Eigen::MatrixXd> capacitance;
+    std::int64_t pending_updates = 0;  // factor updates since factor_version
+    std::vector<LinearBackend::Column> pending;  // their columns C
+    std::vector<double> pending_sign;           // S
     bool valid = false;
   };
   WoodburyCache woodbury_;
-  // W, V and the capacitance's LU for these slipping contacts, from the cache when the
-  // factor and their coupling terms are the same, else solved afresh.
+  // W, V and the capacitance's LU for these slipping contacts: the cache brought to the
+  // factor, its columns kept where the coupling terms are the same, the others solved.
   const WoodburyCache& woodbury_terms(const std::vector<std::int64_t>& slipping, std::int64_t n);
+  // The factor was just updated by +- C C' (`columns`): the cache keeps C for later, or is
+  // dropped when it does not belong to the factor just before, or when C has grown to
+  // as many columns as W (then W solved afresh costs no more).
+  void follow_factor_update(const std::vector<LinearBackend::Column>& columns, bool downdate);
+  // V and the capacitance from the cache's bonds, terms and W.
+  void finish_woodbury(WoodburyCache& cache) const;
   // UMFPACK's iterative refinement (up to 2 steps, each a residual and a solve), on only
   // for the fresh retry after an answer missed the tolerance: every answer is checked
   // against the residual anyway, and without it a solve is one pair of triangular
