@@ -31,6 +31,10 @@ void EquilibriumSolver::solve_coupled(double* rhs, std::int64_t n, int columns) 
     unsymmetric_solve(slipping, rhs, n, columns);
     return;
   }
+  // The right-hand sides are solved on their own, not in one call with W's new columns:
+  // CHOLMOD rounds a column differently in a batch of another size, so the path solved
+  // again at a resume (a call of two columns) would not be the run's bit for bit. Tried:
+  // a resumed run then differed from event 65; the time saved was within the noise.
   factor_->solve(rhs, n, columns);
   if (slipping.empty()) {
     woodbury_.valid = false;  // no W to carry along the factor updates to come
