@@ -30,15 +30,19 @@ PairTarget ContactLaw::settled_state(const PairSprings& pair, PairState state,
 }
 
 // dn(s) = dn0 + rate s: a closed contact opens when it rises through 0, an open one
-// closes when it falls through 0.
+// closes when it falls through 0. A rate below rate_threshold_ is rounding's, of either
+// sign, and so would be where it crosses 0: such a contact does not switch on the path
+// (docs/robustness.md, "Continuity"; the settling still switches it once dn passes
+// switch_tolerance_).
 PairSwitch ContactLaw::next_switch(const PairSprings& pair, PairState state, const Vec3& du0,
                                    const Vec3& du1, double from, double to, bool at_from) const {
   const double dn0 = pair.direction.dot(du0);
   const double rate = pair.direction.dot(du1);
   const bool closed = state == PairState::closed;
-  if (rate == 0 || (closed && rate < 0) || (!closed && rate > 0)) return {};
+  if (std::abs(rate) <= rate_threshold_ || (closed && rate < 0) || (!closed && rate > 0))
+    return {};
   const bool past = closed ? dn0 + rate * from >= 0 : dn0 + rate * from <= 0;
-  if (past && (!at_from || std::abs(rate) <= rate_threshold_)) return {};
+  if (past && !at_from) return {};
   const double s = past ? from : -dn0 / rate;
   if ((past || s > from) && s <= to) return {s, closed ? PairState::open : PairState::closed};
   return {};

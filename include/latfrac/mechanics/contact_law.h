@@ -7,9 +7,10 @@
 //   - settling at a fixed lambda switches only past a tolerance, 1e-12 a (a the lattice
 //     spacing), so a contact that sits exactly at dn = 0 is not toggled by roundoff;
 //   - on a path, a contact already at or past 0 and still moving the wrong way switches at
-//     the path's start, unless its rate is below 1e-9 a per unit lambda, which rounding
-//     could have given either sign (such a contact moves less than 1e-12 a per 1e-3 of
-//     lambda, 4e-11 a over the paper's whole loading to 0.04).
+//     the path's start; a contact whose rate is below 1e-9 a per unit lambda, which
+//     rounding could have given either sign, does not switch on the path at all (it moves
+//     less than 1e-12 a per 1e-3 of lambda, 4e-11 a over the paper's whole loading to
+//     0.04; where it would cross 0 is rounding's choice).
 #pragma once
 
 #include "latfrac/mechanics/interaction_law.h"
