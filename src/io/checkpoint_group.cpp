@@ -188,9 +188,9 @@ RunCheckpoint read_checkpoint_group(hid_t file) {
         file, group + "/elimination_order", {length_of(file, group + "/elimination_order")});
   }
 
+  auto whole = [&](const std::string& name) { return hsize_t{length_of(file, group + name)}; };
   if (hdf5::exists(file, group + "/lu_states")) {
     factor.lu_current = true;
-    auto whole = [&](const std::string& name) { return hsize_t{length_of(file, group + name)}; };
     factor.lu_states = hdf5::read_dataset<std::uint8_t>(file, group + "/lu_states", {whole("/lu_states")});
     factor.lu_directions =
         hdf5::read_dataset<double>(file, group + "/lu_directions", {whole("/lu_directions")});
@@ -200,7 +200,6 @@ RunCheckpoint read_checkpoint_group(hid_t file) {
                                                          {whole("/lu_change_value")});
   }
   if (hdf5::exists(file, group + "/woodbury_bond")) {
-    auto whole = [&](const std::string& name) { return hsize_t{length_of(file, group + name)}; };
     factor.woodbury_bonds =
         hdf5::read_dataset<std::int64_t>(file, group + "/woodbury_bond", {whole("/woodbury_bond")});
     factor.woodbury_term_counts = hdf5::read_dataset<std::int64_t>(

@@ -97,33 +97,27 @@ const EquilibriumSolver::WoodburyCache& EquilibriumSolver::woodbury_terms(
   Eigen::MatrixXd z = Eigen::MatrixXd::Zero(n, r + m);
   for (Eigen::Index c = 0; c < r; ++c)
     for (const auto& [row, value] : cache.pending[c]) z(row, c) += value;
-  for (Eigen::Index i = 0; i < m; ++i) {
-    const std::vector<double>& t = terms[fresh[i]];
-    LinearBackend::Column column;
-    for (std::size_t q = 0; q + 6 < t.size(); q += 7)
-      append_on_bond(slipping[fresh[i]], t[q] * Vec3(t[q + 1], t[q + 2], t[q + 3]), column);
-    for (const auto& [row, value] : column) z(row, r + i) += value;
-  }
+  for (Eigen::Index i = 0; i < m; ++i)
+    for (const auto& [row, value] : coupling_column(slipping[fresh[i]], terms[fresh[i]], true))
+      z(row, r + i) += value;
   if (r + m > 0) factor_->solve(z.data(), n, static_cast<int>(r + m));
-  Eigen::MatrixXd w = Eigen::MatrixXd::Zero(n, k);
+  // The kept columns brought to the factor: A' = A + C S C' and A W = U give
+  // A' (W - A'^-1 C S C' W) = U (nothing to do when no update is pending, r = 0).
+  std::vector<Eigen::Index> from;
+  for (std::size_t c = 0; c < slipping.size(); ++c)
+    if (kept[c] >= 0) from.push_back(kept[c]);
+  Eigen::MatrixXd moved = cache.w(Eigen::all, from);
   if (r > 0) {
-    // A' = A + C S C' and A W = U: A' (W - A'^-1 C S C' W) = U, for the kept columns.
-    std::vector<Eigen::Index> from;
-    for (std::size_t c = 0; c < slipping.size(); ++c)
-      if (kept[c] >= 0) from.push_back(kept[c]);
-    const Eigen::MatrixXd old = cache.w(Eigen::all, from);
-    Eigen::MatrixXd sctw = Eigen::MatrixXd::Zero(r, old.cols());
+    Eigen::MatrixXd sctw = Eigen::MatrixXd::Zero(r, moved.cols());
     for (Eigen::Index c = 0; c < r; ++c)
       for (const auto& [row, value] : cache.pending[c])
-        sctw.row(c) += (cache.pending_sign[c] * value) * old.row(row);
-    const Eigen::MatrixXd moved = old - z.leftCols(r) * sctw;
-    Eigen::Index next = 0;
-    for (std::size_t c = 0; c < slipping.size(); ++c)
-      if (kept[c] >= 0) w.col(static_cast<Eigen::Index>(c)) = moved.col(next++);
-  } else {
-    for (std::size_t c = 0; c < slipping.size(); ++c)
-      if (kept[c] >= 0) w.col(static_cast<Eigen::Index>(c)) = cache.w.col(kept[c]);
+        sctw.row(c) += (cache.pending_sign[c] * value) * moved.row(row);
+    moved -= z.leftCols(r) * sctw;
   }
+  Eigen::MatrixXd w(n, k);
+  Eigen::Index next = 0;
+  for (std::size_t c = 0; c < slipping.size(); ++c)
+    if (kept[c] >= 0) w.col(static_cast<Eigen::Index>(c)) = moved.col(next++);
   for (Eigen::Index i = 0; i < m; ++i) w.col(fresh[i]) = z.col(r + i);
   cache.w = std::move(w);
   cache.bonds = slipping;
@@ -137,13 +131,24 @@ const EquilibriumSolver::WoodburyCache& EquilibriumSolver::woodbury_terms(
   return cache;
 }
 
-void EquilibriumSolver::finish_woodbury(WoodburyCache& cache) const {
-  cache.v.assign(cache.bonds.size(), {});
-  for (std::size_t c = 0; c < cache.bonds.size(); ++c) {
-    const std::vector<double>& t = cache.terms[c];
-    for (std::size_t q = 0; q + 6 < t.size(); q += 7)
-      append_on_bond(cache.bonds[c], Vec3(t[q + 4], t[q + 5], t[q + 6]), cache.v[c]);
+// The flattened terms are 7 values each: the weight w, then a, then b (U gets w a, V b).
+LinearBackend::Column EquilibriumSolver::coupling_column(std::int64_t bond,
+                                                         const std::vector<double>& terms,
+                                                         bool left) const {
+  LinearBackend::Column column;
+  for (std::size_t q = 0; q + 6 < terms.size(); q += 7) {
+    if (left)
+      append_on_bond(bond, terms[q] * Vec3(terms[q + 1], terms[q + 2], terms[q + 3]), column);
+    else
+      append_on_bond(bond, Vec3(terms[q + 4], terms[q + 5], terms[q + 6]), column);
   }
+  return column;
+}
+
+void EquilibriumSolver::finish_woodbury(WoodburyCache& cache) const {
+  cache.v.clear();
+  for (std::size_t c = 0; c < cache.bonds.size(); ++c)
+    cache.v.push_back(coupling_column(cache.bonds[c], cache.terms[c], false));
   cache.capacitance = Coupling{cache.w, cache.v}.capacitance().partialPivLu();
 }
 

@@ -253,6 +253,9 @@ class EquilibriumSolver {
   void follow_factor_update(const std::vector<LinearBackend::Column>& columns, bool downdate);
   // V and the capacitance from the cache's bonds, terms and W.
   void finish_woodbury(WoodburyCache& cache) const;
+  // A slipping contact's column of U (left) or V from its flattened coupling terms.
+  LinearBackend::Column coupling_column(std::int64_t bond, const std::vector<double>& terms,
+                                        bool left) const;
   // UMFPACK's iterative refinement (up to 2 steps, each a residual and a solve), on only
   // for the fresh retry after an answer missed the tolerance: every answer is checked
   // against the residual anyway, and without it a solve is one pair of triangular
