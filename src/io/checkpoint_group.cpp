@@ -104,6 +104,8 @@ void write_checkpoint_group(hid_t file, const RunCheckpoint& c) {
                         {factor.woodbury_terms.size()});
     hdf5::write_dataset(file, group + "/woodbury_w", factor.woodbury_w,
                         {k, factor.woodbury_w.size() / k});
+  }
+  if (!factor.woodbury_bonds.empty() || !factor.path_y.empty()) {
     hdf5::write_attribute(file, group, "woodbury_pending_updates",
                           factor.woodbury_pending_updates);
     hdf5::write_dataset(file, group + "/woodbury_pending_start", factor.woodbury_pending_start,
@@ -114,6 +116,11 @@ void write_checkpoint_group(hid_t file, const RunCheckpoint& c) {
                         {factor.woodbury_pending_value.size()});
     hdf5::write_dataset(file, group + "/woodbury_pending_sign", factor.woodbury_pending_sign,
                         {factor.woodbury_pending_sign.size()});
+  }
+  if (!factor.path_y.empty()) {
+    const hsize_t n = factor.path_y.size() / 2;
+    hdf5::write_dataset(file, group + "/path_y", factor.path_y, {2, n});
+    hdf5::write_dataset(file, group + "/path_loads", factor.path_loads, {2, n});
   }
 
   const hsize_t bonds = c.pair_states.size();
@@ -211,6 +218,8 @@ RunCheckpoint read_checkpoint_group(hid_t file) {
       throw InputError("dataset " + group + "/woodbury_w is " + hdf5::shape_text(w_shape) +
                        ", expected " + std::to_string(factor.woodbury_bonds.size()) + " x ?");
     factor.woodbury_w = hdf5::read_dataset<double>(file, group + "/woodbury_w", w_shape);
+  }
+  if (hdf5::exists(file, group + "/woodbury_pending_start")) {
     factor.woodbury_pending_updates =
         hdf5::read_attribute<std::int64_t>(file, group, "woodbury_pending_updates");
     factor.woodbury_pending_start = hdf5::read_dataset<std::int64_t>(
@@ -221,6 +230,16 @@ RunCheckpoint read_checkpoint_group(hid_t file) {
         file, group + "/woodbury_pending_value", {whole("/woodbury_pending_value")});
     factor.woodbury_pending_sign = hdf5::read_dataset<double>(
         file, group + "/woodbury_pending_sign", {whole("/woodbury_pending_sign")});
+  }
+  if (hdf5::exists(file, group + "/path_y")) {
+    for (const char* name : {"/path_y", "/path_loads"}) {
+      const hdf5::Shape shape = hdf5::dataset_shape(file, group + name);
+      if (shape.size() != 2 || shape[0] != 2)
+        throw InputError("dataset " + group + name + " is " + hdf5::shape_text(shape) +
+                         ", expected 2 x ?");
+      (std::string(name) == "/path_y" ? factor.path_y : factor.path_loads) =
+          hdf5::read_dataset<double>(file, group + name, shape);
+    }
   }
 
   const hdf5::Shape sets_shape = hdf5::dataset_shape(file, group + "/switch_sets");

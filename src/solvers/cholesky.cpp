@@ -397,42 +397,54 @@ std::vector<std::int64_t> reached_columns(const std::vector<std::int64_t>& rows,
 
 }  // namespace
 
-bool CholeskyFactor::solve_sparse(const Column& b, double* x) {
+bool CholeskyFactor::solve_sparse(const std::vector<Column>& b, double* x) {
   if (!factorized_) throw Error("CholeskyFactor::solve_sparse called before a successful factorization");
   const cholmod_factor& f = *state_->factor;
   const std::int64_t n = static_cast<std::int64_t>(f.n);
   if (f.is_super || f.is_ll || static_cast<std::int64_t>(inverse_permutation_.size()) != n)
     return false;
+  if (b.empty()) return true;
   const auto* start = static_cast<const std::int64_t*>(f.p);
   const auto* count = static_cast<const std::int64_t*>(f.nz);
   const auto* row = static_cast<const std::int64_t*>(f.i);
   const auto* value = static_cast<const double*>(f.x);
   const auto* perm = static_cast<const std::int64_t*>(f.Perm);
-  // P b, then L y = P b over the reached columns only. In the simplicial LDL' form each
-  // column starts with its diagonal (D(j, j)); the entries below it are L(i, j).
-  std::vector<double> y(n, 0.0);
+  // P b, then L y = P b over the reached columns only (those of all the right-hand sides:
+  // one order serves each). In the simplicial LDL' form each column starts with its
+  // diagonal (D(j, j)); the entries below it are L(i, j).
+  const auto columns = static_cast<std::int64_t>(b.size());
+  std::vector<double> y(static_cast<std::size_t>(n * columns), 0.0);
   std::vector<std::int64_t> rows;
-  for (const auto& [r, v] : b) {
-    y[inverse_permutation_[r]] += v;
-    rows.push_back(inverse_permutation_[r]);
+  for (std::int64_t c = 0; c < columns; ++c) {
+    for (const auto& [r, v] : b[static_cast<std::size_t>(c)]) {
+      y[static_cast<std::size_t>(c * n + inverse_permutation_[r])] += v;
+      rows.push_back(inverse_permutation_[r]);
+    }
   }
   const std::vector<std::int64_t> order = reached_columns(rows, start, count, row, n);
   for (auto it = order.rbegin(); it != order.rend(); ++it) {
+    if (row[start[*it]] != *it) return false;
+  }
+  // One pass over the reached columns of L for all the right-hand sides.
+  for (auto it = order.rbegin(); it != order.rend(); ++it) {
     const std::int64_t j = *it;
-    if (row[start[j]] != j) return false;
-    const double yj = y[j];
-    if (yj == 0) continue;
-    for (std::int64_t k = 1; k < count[j]; ++k) y[row[start[j] + k]] -= value[start[j] + k] * yj;
+    for (std::int64_t c = 0; c < columns; ++c) {
+      double* yc = y.data() + c * n;
+      const double yj = yc[j];
+      if (yj == 0) continue;
+      for (std::int64_t k = 1; k < count[j]; ++k) yc[row[start[j] + k]] -= value[start[j] + k] * yj;
+    }
   }
   // D L' z = y over every column (the solution is dense): CHOLMOD's own simplicial solve,
   // which treats runs of columns with one pattern together. Then x = P' z.
   cholmod_common& c = state_->common;
-  cholmod_dense forward = dense_view(y.data(), n);
+  cholmod_dense forward = dense_view(y.data(), n, static_cast<int>(columns));
   const int ok = cholmod_l_solve2(CHOLMOD_DLt, state_->factor, &forward, nullptr,
                                   &state_->solution, nullptr, &state_->work_y, &state_->work_e, &c);
   check(c, ok, "cholmod_l_solve2");
   const double* z = static_cast<const double*>(state_->solution->x);
-  for (std::int64_t k = 0; k < n; ++k) x[perm[k]] = z[k];
+  for (std::int64_t col = 0; col < columns; ++col)
+    for (std::int64_t k = 0; k < n; ++k) x[col * n + perm[k]] = z[col * n + k];
   return true;
 }
 

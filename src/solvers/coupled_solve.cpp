@@ -2,6 +2,7 @@
 // part, corrected by Sherman-Morrison-Woodbury for a few slipping contacts, or an LU of the
 // whole nonsymmetric matrix for many (equilibrium.h, solve_coupled).
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -26,7 +27,7 @@ void EquilibriumSolver::solve_coupled(double* rhs, std::int64_t n, int columns) 
   if (n == 0) return;
   const std::vector<std::int64_t> slipping = slipping_pairs();
   if (slipping.size() > woodbury_limit) {
-    woodbury_.valid = false;
+    followed_.valid = false;
     ++counters_.coupled_solves;
     unsymmetric_solve(slipping, rhs, n, columns);
     return;
@@ -36,10 +37,7 @@ void EquilibriumSolver::solve_coupled(double* rhs, std::int64_t n, int columns) 
   // again at a resume (a call of two columns) would not be the run's bit for bit. Tried:
   // a resumed run then differed from event 65; the time saved was within the noise.
   factor_->solve(rhs, n, columns);
-  if (slipping.empty()) {
-    woodbury_.valid = false;  // no W to carry along the factor updates to come
-    return;
-  }
+  if (slipping.empty()) return;
   ++counters_.coupled_solves;
   woodbury_correction(slipping, rhs, n, columns);
 }
@@ -65,10 +63,22 @@ struct Coupling {
 
 }  // namespace
 
-const EquilibriumSolver::WoodburyCache& EquilibriumSolver::woodbury_terms(
-    const std::vector<std::int64_t>& slipping, std::int64_t n) {
+namespace {
+
+// The entries where `now` differs from `before` (their difference), with their count.
+LinearBackend::Column changed_entries(const Vector& now, const Vector& before) {
+  LinearBackend::Column change;
+  for (Eigen::Index i = 0; i < now.size(); ++i)
+    if (now[i] != before[i]) change.push_back({i, now[i] - before[i]});
+  return change;
+}
+
+}  // namespace
+
+const EquilibriumSolver::FollowedSolves& EquilibriumSolver::followed_solves(
+    const std::vector<std::int64_t>& slipping, std::int64_t n, bool with_path) {
   const auto k = static_cast<Eigen::Index>(slipping.size());
-  std::vector<std::vector<double>> terms(slipping.size());  // the cache's key
+  std::vector<std::vector<double>> terms(slipping.size());  // W's key
   for (std::size_t c = 0; c < slipping.size(); ++c) {
     const std::int64_t bond = slipping[c];
     for (const CouplingTerm& t :
@@ -76,12 +86,16 @@ const EquilibriumSolver::WoodburyCache& EquilibriumSolver::woodbury_terms(
       terms[c].insert(terms[c].end(), {t.weight, t.left.x(), t.left.y(), t.left.z(),
                                        t.right.x(), t.right.y(), t.right.z()});
   }
-  WoodburyCache& cache = woodbury_;
+  if (with_path) update_loads();
+  FollowedSolves& cache = followed_;
   const std::uint64_t version = factor_->version();
   const bool followed =
-      cache.valid && cache.w.rows() == n &&
+      cache.valid && cache.w.rows() == n && cache.y.rows() == n &&
       cache.factor_version + static_cast<std::uint64_t>(cache.pending_updates) == version;
-  if (followed && cache.pending.empty() && cache.bonds == slipping && cache.terms == terms)
+  const bool path_kept = followed && cache.y.cols() == 2;
+  const bool same_loads = path_kept && cache.y_load0 == load0_ && cache.y_load1 == load1_;
+  if (followed && cache.pending.empty() && cache.bonds == slipping && cache.terms == terms &&
+      (!with_path || same_loads))
     return cache;
   // A contact that slides as before keeps its column, brought to the factor; the others
   // are solved afresh, in the same solve as the factor updates' columns.
@@ -92,33 +106,96 @@ const EquilibriumSolver::WoodburyCache& EquilibriumSolver::woodbury_terms(
         kept[c] = static_cast<Eigen::Index>(j);
     if (kept[c] < 0) fresh.push_back(static_cast<Eigen::Index>(c));
   }
-  const auto r = static_cast<Eigen::Index>(followed ? cache.pending.size() : 0);
-  const auto m = static_cast<Eigen::Index>(fresh.size());
-  Eigen::MatrixXd z = Eigen::MatrixXd::Zero(n, r + m);
-  for (Eigen::Index c = 0; c < r; ++c)
-    for (const auto& [row, value] : cache.pending[c]) z(row, c) += value;
-  for (Eigen::Index i = 0; i < m; ++i)
-    for (const auto& [row, value] : coupling_column(slipping[fresh[i]], terms[fresh[i]], true))
-      z(row, r + i) += value;
-  if (r + m > 0) factor_->solve(z.data(), n, static_cast<int>(r + m));
-  // The kept columns brought to the factor: A' = A + C S C' and A W = U give
-  // A' (W - A'^-1 C S C' W) = U (nothing to do when no update is pending, r = 0).
+  // The pending updates' columns are solved when W's kept columns need them, or when Y
+  // follows. Y follows when that costs no more passes over the factor than solving it
+  // afresh: its extra columns are the loads' change (a stick contact's anchor: few
+  // entries), and the pending columns when W does not need them anyway. A call without
+  // the path keeps Y only where that costs nothing.
+  const auto pending = static_cast<Eigen::Index>(followed ? cache.pending.size() : 0);
+  const bool w_follows =
+      std::any_of(kept.begin(), kept.end(), [](Eigen::Index j) { return j >= 0; });
+  LinearBackend::Column change[2];
+  // Only a direct factor's solves are exact to rounding: the petsc backend's after
+  // updates are iterative, and their tolerance would add up along the updates.
+  bool keep_path = path_kept && options_.backend == LinearBackendKind::cholmod;
+  if (keep_path && with_path && !same_loads) {
+    change[0] = changed_entries(load0_, cache.y_load0);
+    change[1] = changed_entries(load1_, cache.y_load1);
+    keep_path = static_cast<std::int64_t>(change[0].size() + change[1].size()) <= n / 8;
+  }
+  if (keep_path) {
+    // A solve goes over the factor once per 4 columns (CHOLMOD's simplicial kernels take
+    // up to 4 at a time), and Y afresh is one more pass with its two dense columns.
+    const Eigen::Index loads = !change[0].empty() + !change[1].empty();
+    const auto m = static_cast<Eigen::Index>(fresh.size());
+    const Eigen::Index follow = (pending + loads + m + 3) / 4;
+    const Eigen::Index afresh = ((w_follows ? pending : 0) + m + 3) / 4 + 1;
+    keep_path = with_path ? follow <= afresh : (w_follows || pending == 0) && loads == 0;
+  }
+  const bool path_afresh = with_path && !keep_path;
+  const Eigen::Index r = w_follows || keep_path ? pending : 0;
+  std::vector<LinearBackend::Column> columns(cache.pending.begin(), cache.pending.begin() + r);
+  Eigen::Index load_column[2] = {-1, -1};
+  for (int c = 0; keep_path && c < 2; ++c) {
+    if (change[c].empty()) continue;
+    load_column[c] = static_cast<Eigen::Index>(columns.size());
+    columns.push_back(std::move(change[c]));
+  }
+  const auto first_fresh = static_cast<Eigen::Index>(columns.size());
+  for (const Eigen::Index c : fresh)
+    columns.push_back(coupling_column(slipping[static_cast<std::size_t>(c)],
+                                      terms[static_cast<std::size_t>(c)], true));
+  // Every column has a few entries (a bond's), so the backend's sparse route solves them
+  // (in the factor's forward half only the columns they reach); a backend without one
+  // solves them whole.
+  const auto total = static_cast<Eigen::Index>(columns.size());
+  Eigen::MatrixXd z = Eigen::MatrixXd::Zero(n, total);
+  if (total > 0 && !factor_->solve_sparse(columns, z.data())) {
+    for (Eigen::Index c = 0; c < total; ++c)
+      for (const auto& [row, value] : columns[static_cast<std::size_t>(c)]) z(row, c) += value;
+    factor_->solve(z.data(), n, static_cast<int>(total));
+  }
+  // Brought to the factor: A' = A + C S C' and A X = B give A' (X - A'^-1 C S C' X) = B
+  // (nothing to do when no update is pending, r = 0).
+  auto bring = [&](Eigen::MatrixXd& x) {
+    if (r == 0 || x.cols() == 0) return;
+    Eigen::MatrixXd sctx = Eigen::MatrixXd::Zero(r, x.cols());
+    for (Eigen::Index c = 0; c < r; ++c)
+      for (const auto& [row, value] : columns[static_cast<std::size_t>(c)])
+        sctx.row(c) += (cache.pending_sign[static_cast<std::size_t>(c)] * value) * x.row(row);
+    x -= z.leftCols(r) * sctx;
+  };
   std::vector<Eigen::Index> from;
   for (std::size_t c = 0; c < slipping.size(); ++c)
     if (kept[c] >= 0) from.push_back(kept[c]);
-  Eigen::MatrixXd moved = cache.w(Eigen::all, from);
-  if (r > 0) {
-    Eigen::MatrixXd sctw = Eigen::MatrixXd::Zero(r, moved.cols());
-    for (Eigen::Index c = 0; c < r; ++c)
-      for (const auto& [row, value] : cache.pending[c])
-        sctw.row(c) += (cache.pending_sign[c] * value) * moved.row(row);
-    moved -= z.leftCols(r) * sctw;
-  }
+  Eigen::MatrixXd moved = followed ? Eigen::MatrixXd(cache.w(Eigen::all, from))
+                                   : Eigen::MatrixXd(n, 0);
+  bring(moved);
   Eigen::MatrixXd w(n, k);
   Eigen::Index next = 0;
   for (std::size_t c = 0; c < slipping.size(); ++c)
     if (kept[c] >= 0) w.col(static_cast<Eigen::Index>(c)) = moved.col(next++);
-  for (Eigen::Index i = 0; i < m; ++i) w.col(fresh[i]) = z.col(r + i);
+  for (std::size_t i = 0; i < fresh.size(); ++i)
+    w.col(fresh[i]) = z.col(first_fresh + static_cast<Eigen::Index>(i));
+  if (path_afresh) {
+    // As the path was always solved: the two loads in one call of the factor's solve.
+    cache.y.resize(n, 2);
+    cache.y.col(0) = load0_;
+    cache.y.col(1) = load1_;
+    factor_->solve(cache.y.data(), n, 2);
+    cache.y_load0 = load0_;
+    cache.y_load1 = load1_;
+  } else if (keep_path) {
+    bring(cache.y);
+    for (int c = 0; c < 2; ++c)
+      if (load_column[c] >= 0) cache.y.col(c) += z.col(load_column[c]);
+    if (with_path) {
+      cache.y_load0 = load0_;
+      cache.y_load1 = load1_;
+    }
+  } else {
+    cache.y.resize(n, 0);
+  }
   cache.w = std::move(w);
   cache.bonds = slipping;
   cache.terms = std::move(terms);
@@ -145,8 +222,9 @@ LinearBackend::Column EquilibriumSolver::coupling_column(std::int64_t bond,
   return column;
 }
 
-void EquilibriumSolver::finish_woodbury(WoodburyCache& cache) const {
+void EquilibriumSolver::finish_woodbury(FollowedSolves& cache) const {
   cache.v.clear();
+  if (cache.bonds.empty()) return;
   for (std::size_t c = 0; c < cache.bonds.size(); ++c)
     cache.v.push_back(coupling_column(cache.bonds[c], cache.terms[c], false));
   cache.capacitance = Coupling{cache.w, cache.v}.capacitance().partialPivLu();
@@ -154,11 +232,13 @@ void EquilibriumSolver::finish_woodbury(WoodburyCache& cache) const {
 
 void EquilibriumSolver::follow_factor_update(const std::vector<LinearBackend::Column>& columns,
                                              bool downdate) {
-  WoodburyCache& cache = woodbury_;
+  FollowedSolves& cache = followed_;
   if (!cache.valid) return;
   const std::uint64_t before = factor_->version() - 1;
+  const auto after = static_cast<Eigen::Index>(cache.pending.size() + columns.size());
+  const bool worth = after < cache.w.cols() || (cache.y.cols() == 2 && after <= 4);
   if (cache.factor_version + static_cast<std::uint64_t>(cache.pending_updates) != before ||
-      static_cast<Eigen::Index>(cache.pending.size() + columns.size()) >= cache.w.cols()) {
+      !worth) {
     cache.valid = false;
     return;
   }
@@ -171,7 +251,7 @@ void EquilibriumSolver::follow_factor_update(const std::vector<LinearBackend::Co
 
 void EquilibriumSolver::woodbury_correction(const std::vector<std::int64_t>& slipping,
                                             double* rhs, std::int64_t n, int columns) {
-  const WoodburyCache& cache = woodbury_terms(slipping, n);
+  const FollowedSolves& cache = followed_solves(slipping, n, false);
   const Coupling coupling{cache.w, cache.v};
   Eigen::Map<Eigen::MatrixXd> x(rhs, n, columns);
   x -= coupling.w * cache.capacitance.solve(coupling.v_times(x));
@@ -182,7 +262,7 @@ void EquilibriumSolver::woodbury_correction(const std::vector<std::int64_t>& sli
 // largest unknown is where to hold it.
 EquilibriumSolver::SlidingMotion EquilibriumSolver::sliding_motion(
     const std::vector<std::int64_t>& slipping, std::int64_t n) {
-  const WoodburyCache& cache = woodbury_terms(slipping, n);
+  const FollowedSolves& cache = followed_solves(slipping, n, false);
   const Coupling coupling{cache.w, cache.v};
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(coupling.capacitance(), Eigen::ComputeFullV);
   const Eigen::Index k = cache.w.cols();

@@ -87,24 +87,31 @@ EquilibriumSolver::History EquilibriumSolver::history() const {
         for (int c = 0; c < 3; ++c) h.lu_change_values.push_back(change(r, c));
     }
   }
-  const WoodburyCache& w = woodbury_;
-  if (h.factor_current && w.valid && w.w.rows() == model_.dofs().free_count &&
-      w.factor_version + static_cast<std::uint64_t>(w.pending_updates) == factor_->version()) {
-    h.woodbury_bonds = w.bonds;
-    for (const std::vector<double>& terms : w.terms) {
+  const FollowedSolves& f = followed_;
+  const std::int64_t n = model_.dofs().free_count;
+  if (h.factor_current && f.valid && f.w.rows() == n && f.y.rows() == n &&
+      f.factor_version + static_cast<std::uint64_t>(f.pending_updates) == factor_->version() &&
+      (!f.bonds.empty() || f.y.cols() == 2)) {
+    h.woodbury_bonds = f.bonds;
+    for (const std::vector<double>& terms : f.terms) {
       h.woodbury_term_counts.push_back(static_cast<std::int64_t>(terms.size()));
       h.woodbury_terms.insert(h.woodbury_terms.end(), terms.begin(), terms.end());
     }
-    h.woodbury_w.assign(w.w.data(), w.w.data() + w.w.size());
-    h.woodbury_pending_updates = w.pending_updates;
+    h.woodbury_w.assign(f.w.data(), f.w.data() + f.w.size());
+    h.woodbury_pending_updates = f.pending_updates;
     h.woodbury_pending_start.push_back(0);
-    for (std::size_t c = 0; c < w.pending.size(); ++c) {
-      for (const auto& [row, value] : w.pending[c]) {
+    for (std::size_t c = 0; c < f.pending.size(); ++c) {
+      for (const auto& [row, value] : f.pending[c]) {
         h.woodbury_pending_index.push_back(row);
         h.woodbury_pending_value.push_back(value);
       }
       h.woodbury_pending_start.push_back(static_cast<std::int64_t>(h.woodbury_pending_index.size()));
-      h.woodbury_pending_sign.push_back(w.pending_sign[c]);
+      h.woodbury_pending_sign.push_back(f.pending_sign[c]);
+    }
+    if (f.y.cols() == 2) {
+      h.path_y.assign(f.y.data(), f.y.data() + f.y.size());
+      h.path_loads.assign(f.y_load0.data(), f.y_load0.data() + n);
+      h.path_loads.insert(h.path_loads.end(), f.y_load1.data(), f.y_load1.data() + n);
     }
   }
   h.solution_valid = last_solution_valid_;
@@ -135,7 +142,7 @@ void EquilibriumSolver::rebuild(const History& history, const std::vector<PairSt
   }
   loads_current_ = false;
   if (history.lu_current) rebuild_lu(history);
-  if (!history.woodbury_bonds.empty()) rebuild_woodbury(history);
+  if (!history.woodbury_bonds.empty() || !history.path_y.empty()) rebuild_followed(history);
   if (history.solution_valid) {
     last_solution_ = history.solution;
     last_lambda_ = history.solution_lambda;
@@ -145,9 +152,9 @@ void EquilibriumSolver::rebuild(const History& history, const std::vector<PairSt
   counters_ = {};
 }
 
-// The Woodbury terms as the run had carried them along: W, and the factor updates it has
-// not followed yet (the rebuilt factor has had them).
-void EquilibriumSolver::rebuild_woodbury(const History& history) {
+// The followed solves as the run had carried them along: W, Y, and the factor updates
+// they have not followed yet (the rebuilt factor has had them).
+void EquilibriumSolver::rebuild_followed(const History& history) {
   const std::size_t k = history.woodbury_bonds.size();
   const std::int64_t n = model_.dofs().free_count;
   std::size_t values = 0;
@@ -160,12 +167,14 @@ void EquilibriumSolver::rebuild_woodbury(const History& history) {
       static_cast<std::size_t>(history.woodbury_pending_start.back()) !=
           history.woodbury_pending_index.size() ||
       history.woodbury_pending_updates < 0 ||
-      static_cast<std::uint64_t>(history.woodbury_pending_updates) > factor_->version())
+      static_cast<std::uint64_t>(history.woodbury_pending_updates) > factor_->version() ||
+      (!history.path_y.empty() && (history.path_y.size() != 2 * static_cast<std::size_t>(n) ||
+                                   history.path_loads.size() != history.path_y.size())))
     throw Error("a checkpoint's Woodbury terms do not fit together");
   for (std::int64_t bond : history.woodbury_bonds)
     if (bond < 0 || bond >= model_.lattice.bond_count())
       throw Error("a checkpoint's Woodbury terms name a bond the lattice does not have");
-  WoodburyCache& cache = woodbury_;
+  FollowedSolves& cache = followed_;
   cache.bonds = history.woodbury_bonds;
   cache.terms.clear();
   std::size_t at = 0;
@@ -188,6 +197,13 @@ void EquilibriumSolver::rebuild_woodbury(const History& history) {
       if (row < 0 || row >= n) throw Error("a checkpoint's Woodbury column leaves the free dofs");
       cache.pending[c].push_back({row, history.woodbury_pending_value[e]});
     }
+  }
+  if (history.path_y.empty()) {
+    cache.y.resize(n, 0);
+  } else {
+    cache.y = Eigen::Map<const Eigen::MatrixXd>(history.path_y.data(), n, 2);
+    cache.y_load0 = Eigen::Map<const Vector>(history.path_loads.data(), n);
+    cache.y_load1 = Eigen::Map<const Vector>(history.path_loads.data() + n, n);
   }
   cache.pending_updates = history.woodbury_pending_updates;
   cache.factor_version =
@@ -542,7 +558,7 @@ Vector EquilibriumSolver::checked_solve(double lambda) {
   const std::int64_t n = model_.dofs().free_count;
   if (last_solution_valid_ && factor_current_ && lambda == last_lambda_ && n > 0) {
     Vector correction(n);
-    if (factor_->solve_sparse(pending_forces_, correction.data())) {
+    if (factor_->solve_sparse({pending_forces_}, correction.data())) {
       ++counters_.solves;
       ++counters_.correction_solves;
       Vector u = last_solution_ + correction;
@@ -634,12 +650,25 @@ AffinePath EquilibriumSolver::affine_path() {
   if (!model_.is_linear()) throw Error("affine_path: the bond law is not linear");
   const std::int64_t n = model_.dofs().free_count;
   if (!factor_current_) refactorize(Vector::Zero(n), 0.0);
-  update_loads();
-  Eigen::MatrixXd rhs(n, 2);
-  rhs.col(0) = load0_;
-  rhs.col(1) = load1_;
-  solve_coupled(rhs.data(), n, 2);
-  return {rhs.col(0), rhs.col(1)};
+  const std::vector<std::int64_t> slipping = slipping_pairs();
+  if (n == 0 || slipping.size() > woodbury_limit) {
+    update_loads();
+    Eigen::MatrixXd rhs(n, 2);
+    rhs.col(0) = load0_;
+    rhs.col(1) = load1_;
+    solve_coupled(rhs.data(), n, 2);
+    return {rhs.col(0), rhs.col(1)};
+  }
+  // The factor's Y = A^-1 [load0 load1], followed along the updates (FollowedSolves),
+  // corrected for the slipping contacts.
+  ++counters_.solves;
+  const FollowedSolves& followed = followed_solves(slipping, n, true);
+  Eigen::MatrixXd x = followed.y;
+  if (!slipping.empty()) {
+    ++counters_.coupled_solves;
+    woodbury_correction(slipping, x.data(), n, 2);
+  }
+  return {x.col(0), x.col(1)};
 }
 
 }  // namespace latfrac

@@ -88,7 +88,7 @@ class PetscBackend final : public LinearBackend {
   const std::vector<std::int64_t>& given_order() const override { return locator_.given_order(); }
   void factorize(StiffnessMatrix& matrix) override;
   void solve(double* rhs, std::int64_t rows, int columns) override;
-  bool solve_sparse(const Column&, double*) override { return false; }
+  bool solve_sparse(const std::vector<Column>&, double*) override { return false; }
   void update(const std::vector<Column>& columns, bool downdate) override;
   const WeakestPivot& weakest_pivot() const override { return none_; }
   NullMode null_mode(StiffnessMatrix&) override { return {}; }

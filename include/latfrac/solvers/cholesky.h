@@ -47,7 +47,7 @@ class CholeskyFactor final : public LinearBackend {
   // solve then visits only the columns that b reaches in the factor's elimination graph,
   // about half the work of solve() for the few-entry b of a bond's force. Returns false,
   // leaving x alone, when the factor is still supernodal (use solve()).
-  bool solve_sparse(const Column& b, double* x) override;
+  bool solve_sparse(const std::vector<Column>& b, double* x) override;
   // K <- K + C C' (update) or K - C C' (downdate) on the factor itself, without
   // refactorizing. The first call converts the supernodal LL' factor to the simplicial
   // LDL' form that cholmod_l_updown needs. Throws Error if the result is not positive

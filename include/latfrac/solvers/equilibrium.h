@@ -133,6 +133,11 @@ class EquilibriumSolver {
     std::vector<std::int64_t> woodbury_pending_index;
     std::vector<double> woodbury_pending_value;
     std::vector<double> woodbury_pending_sign;
+    // The affine path's Y = A^-1 [load0 load1] as the run carried it along (empty: none
+    // kept), free dofs x 2 column by column, and the loads it solves (load0 then load1).
+    // The pending updates above are Y's too (and written when only Y is kept).
+    std::vector<double> path_y;
+    std::vector<double> path_loads;
   };
   History history() const;
   // With the model in history.factored_states (when the factor was current) and in its
@@ -140,7 +145,8 @@ class EquilibriumSolver {
   // and leaves the model in `states`. The counters start again from zero.
   void rebuild(const History& history, const std::vector<PairState>& states);
   void rebuild_lu(const History& history);
-  void rebuild_woodbury(const History& history);
+  // W, Y and the pending updates (followed_solves) as the run had carried them.
+  void rebuild_followed(const History& history);
 
   const SolverCounters& counters() const { return counters_; }
   StiffnessMatrix& stiffness() { return stiffness_; }
@@ -185,7 +191,7 @@ class EquilibriumSolver {
   // while contacts slip, with their nonsymmetric parts K = A + U V' (A the factor's
   // matrix; one column of U and V per slipping contact): up to woodbury_limit slipping
   // contacts, the Sherman-Morrison-Woodbury correction x = y - W (I + V' W)^-1 V' y with
-  // y = A^-1 rhs and W = A^-1 U (kept along the factor updates: WoodburyCache); beyond,
+  // y = A^-1 rhs and W = A^-1 U (kept along the factor updates: FollowedSolves); beyond,
   // an LU of K (UMFPACK), whose cost does not grow with their number. The limit was 16
   // while W was solved afresh after every update; following W made the Woodbury route
   // cheaper than the LU up to about a hundred (docs/benchmarks.md).
@@ -224,35 +230,44 @@ class EquilibriumSolver {
   static constexpr double sliding_mechanism_ratio = 1e-8;
   void woodbury_correction(const std::vector<std::int64_t>& slipping, double* rhs,
                            std::int64_t n, int columns);
-  // The Woodbury correction's W = A^-1 U, V and the LU of I + V' W, kept while the
-  // slipping contacts' coupling terms stay the same: a run solves several times between
-  // two changes (the check, the path's two columns, the settling). The factor updates
-  // since W was exact (A' = A + C S C', S = +-1 per column) are kept too, and W is brought
-  // to the new factor when it is next needed: W' = W - A'^-1 C S C' W (exact: A' W' = U),
-  // one solve with C's columns, not one per slipping contact. A contact that starts
-  // slipping adds its column, solved alone.
-  struct WoodburyCache {
-    std::uint64_t factor_version = 0;  // the factor W = A^-1 U belongs to
-    std::vector<std::int64_t> bonds;
+  // Solves with the factor alone that are kept along its updates: the Woodbury
+  // correction's W = A^-1 U (with V and the LU of I + V' W) while the slipping contacts'
+  // coupling terms stay the same, and the affine path's Y = A^-1 [load0 load1] for the
+  // loads it was solved with. A run solves several times between two changes (the
+  // check, the path's two columns, the settling), and the factor changes by a rank update
+  // or two between two paths. The factor updates since the solves were exact (A' = A +
+  // C S C', S = +-1 per column) are kept, and the solves are brought to the new factor
+  // when next needed: X' = X - A'^-1 C S C' X (exact: A' X' = A X), one solve with C's
+  // few-entry columns for all of them, not one per column of W and Y. A contact that
+  // starts slipping adds its column, solved alone; loads that changed (a stick contact's
+  // anchor) add A^-1 of their change, which has a few entries too.
+  struct FollowedSolves {
+    std::uint64_t factor_version = 0;  // the factor the solves belong to
+    std::vector<std::int64_t> bonds;   // W: the slipping contacts (none: no columns)
     std::vector<std::vector<double>> terms;  // each contact's coupling terms, flattened
     Eigen::MatrixXd w;
     std::vector<LinearBackend::Column> v;
     Eigen::PartialPivLU<Eigen::MatrixXd> capacitance;
+    Eigen::MatrixXd y;  // the path's Y (no columns: none kept)
+    Vector y_load0, y_load1;  // the loads Y solves
     std::int64_t pending_updates = 0;  // factor updates since factor_version
     std::vector<LinearBackend::Column> pending;  // their columns C
     std::vector<double> pending_sign;           // S
     bool valid = false;
   };
-  WoodburyCache woodbury_;
-  // W, V and the capacitance's LU for these slipping contacts: the cache brought to the
-  // factor, its columns kept where the coupling terms are the same, the others solved.
-  const WoodburyCache& woodbury_terms(const std::vector<std::int64_t>& slipping, std::int64_t n);
-  // The factor was just updated by +- C C' (`columns`): the cache keeps C for later, or is
-  // dropped when it does not belong to the factor just before, or when C has grown to
-  // as many columns as W (then W solved afresh costs no more).
+  FollowedSolves followed_;
+  // The followed solves brought to the factor, W for these slipping contacts (its columns
+  // kept where the coupling terms are the same, the others solved) and, with_path, Y for
+  // the present loads.
+  const FollowedSolves& followed_solves(const std::vector<std::int64_t>& slipping,
+                                        std::int64_t n, bool with_path);
+  // The factor was just updated by +- C C' (`columns`): the followed solves keep C for
+  // later, or are dropped when they do not belong to the factor just before, or when C
+  // has grown to as many columns as W and to more than 4 (one pass over the factor; then
+  // solved afresh they cost no more).
   void follow_factor_update(const std::vector<LinearBackend::Column>& columns, bool downdate);
-  // V and the capacitance from the cache's bonds, terms and W.
-  void finish_woodbury(WoodburyCache& cache) const;
+  // V and the capacitance from the followed solves' bonds, terms and W.
+  void finish_woodbury(FollowedSolves& cache) const;
   // A slipping contact's column of U (left) or V from its flattened coupling terms.
   LinearBackend::Column coupling_column(std::int64_t bond, const std::vector<double>& terms,
                                         bool left) const;

@@ -44,9 +44,10 @@ class LinearBackend {
   // Solves K X = B in place for `columns` right-hand sides stored column after column,
   // with K the factorized matrix and every update since.
   virtual void solve(double* rhs, std::int64_t rows, int columns) = 0;
-  // Solves K x = b for a b with few entries (rows may repeat: they add) when the backend
-  // has a cheaper route for it; returns false, leaving x alone, when it has none.
-  virtual bool solve_sparse(const Column& b, double* x) = 0;
+  // Solves K X = B for right-hand sides with few entries each (rows may repeat: they
+  // add), X stored column after column (rows x b.size()), when the backend has a cheaper
+  // route for them; returns false, leaving X alone, when it has none.
+  virtual bool solve_sparse(const std::vector<Column>& b, double* x) = 0;
   // K <- K + C C' (update) or K - C C' (downdate). Throws Error when the backend cannot
   // (the caller then factorizes afresh).
   virtual void update(const std::vector<Column>& columns, bool downdate) = 0;
