@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -33,9 +34,10 @@ void EquilibriumSolver::solve_coupled(double* rhs, std::int64_t n, int columns) 
     return;
   }
   // The right-hand sides are solved on their own, not in one call with W's new columns:
-  // CHOLMOD rounds a column differently in a batch of another size, so the path solved
-  // again at a resume (a call of two columns) would not be the run's bit for bit. Tried:
-  // a resumed run then differed from event 65; the time saved was within the noise.
+  // CHOLMOD rounds a column differently in a batch of another size, and a resume solves
+  // them again alone. (Tried for the path: a resumed run differed from event 65. The
+  // event-driven path's solve is now carried along with W instead, and kept in the
+  // checkpoint: followed_solves.)
   factor_->solve(rhs, n, columns);
   if (slipping.empty()) return;
   ++counters_.coupled_solves;
@@ -134,7 +136,9 @@ const EquilibriumSolver::FollowedSolves& EquilibriumSolver::followed_solves(
   }
   const bool path_afresh = with_path && !keep_path;
   const Eigen::Index r = w_follows || keep_path ? pending : 0;
-  std::vector<LinearBackend::Column> columns(cache.pending.begin(), cache.pending.begin() + r);
+  // (Moved: the pending list is cleared below.)
+  std::vector<LinearBackend::Column> columns(std::make_move_iterator(cache.pending.begin()),
+                                             std::make_move_iterator(cache.pending.begin() + r));
   Eigen::Index load_column[2] = {-1, -1};
   for (int c = 0; keep_path && c < 2; ++c) {
     if (change[c].empty()) continue;

@@ -170,7 +170,7 @@ void EquilibriumSolver::rebuild_followed(const History& history) {
       static_cast<std::uint64_t>(history.woodbury_pending_updates) > factor_->version() ||
       (!history.path_y.empty() && (history.path_y.size() != 2 * static_cast<std::size_t>(n) ||
                                    history.path_loads.size() != history.path_y.size())))
-    throw Error("a checkpoint's Woodbury terms do not fit together");
+    throw Error("a checkpoint's Woodbury terms or path solve do not fit together");
   for (std::int64_t bond : history.woodbury_bonds)
     if (bond < 0 || bond >= model_.lattice.bond_count())
       throw Error("a checkpoint's Woodbury terms name a bond the lattice does not have");

@@ -42,11 +42,12 @@ class CholeskyFactor final : public LinearBackend {
   // Solves K X = B for `columns` right-hand sides stored column after column, in place.
   void solve(double* rhs, std::int64_t rows, int columns) override;
 
-  // Solves K x = b for a right-hand side b with few nonzeros (rows may repeat: they add)
-  // into x (n entries). Needs the simplicial LDL' factor that updates leave: the forward
-  // solve then visits only the columns that b reaches in the factor's elimination graph,
-  // about half the work of solve() for the few-entry b of a bond's force. Returns false,
-  // leaving x alone, when the factor is still supernodal (use solve()).
+  // Solves K X = B for right-hand sides with few nonzeros each (rows may repeat: they
+  // add) into X (n x b.size(), column after column). Needs the simplicial LDL' factor
+  // that updates leave: the forward solve then visits only the columns of L that the
+  // right-hand sides reach, all of them in one pass, and the backward solve is CHOLMOD's
+  // with every column at once; about half the work of solve() for a bond's few entries.
+  // Returns false, leaving X alone, when the factor is still supernodal (use solve()).
   bool solve_sparse(const std::vector<Column>& b, double* x) override;
   // K <- K + C C' (update) or K - C C' (downdate) on the factor itself, without
   // refactorizing. The first call converts the supernodal LL' factor to the simplicial
