@@ -168,7 +168,7 @@ TEST_CASE("absent sections leave their effects off and defaults apply", "[io]") 
 TEST_CASE("an unknown key or section names the closest valid one", "[io]") {
   CHECK(error_of(with(minimal, "spacing", "spaceing")) ==
         "t.toml:4: lattice.spaceing: unknown key (did you mean 'spacing'?); "
-        "allowed in [lattice]: dim, kind, spacing, size, next_nearest, seed");
+        "allowed in [lattice]: dim, kind, spacing, size, next_nearest, seed, mirror");
   CHECK_THAT(error_of(with(minimal, "young", "yng")), Contains("did you mean 'young'?"));
   CHECK_THAT(error_of(with(minimal, "spacing", "sp")), Contains("did you mean 'spacing'?"));
   CHECK_THAT(error_of(with(minimal, "density", "colour")),
@@ -305,7 +305,7 @@ TEST_CASE("Overrides (--set) are applied and then validated", "[io]") {
         "--set lattice.spacing: lattice.spacing: -1 is out of range; allowed: spacing > 0 (m)");
   CHECK(error_of(minimal, {"lattice.spaceing=3"}) ==
         "--set lattice.spaceing: lattice.spaceing: unknown key (did you mean 'spacing'?); "
-        "allowed in [lattice]: dim, kind, spacing, size, next_nearest, seed");
+        "allowed in [lattice]: dim, kind, spacing, size, next_nearest, seed, mirror");
   CHECK_THAT(error_of(minimal, {"latice.spacing=3"}),
              StartsWith("--set latice.spacing: latice: unknown section [latice] (did you mean "
                         "[lattice]?)"));
@@ -463,4 +463,8 @@ TEST_CASE("[lattice] kind and seed: random lattices, their keys and their range 
   CHECK_THAT(error_of(with(minimal, "spacing = 500", "kind = \"voronoi\"\nspacing = 500")),
              Contains("lattice.kind"));
   CHECK_THAT(error_of(with(random, "seed = 42", "seed = -1")), Contains("lattice.seed"));
+  CHECK_THAT(error_of(with(minimal, "spacing = 500", "mirror = true\nspacing = 500")),
+             Contains("lattice.mirror: only applies to a random lattice"));
+  CHECK(parse_problem(with(random, "seed = 42", "seed = 42\nmirror = true"), "t.toml").lattice.mirror);
+  CHECK_THAT(error_of(with(random, "seed = 42", "seed = 42\nmirror = 1")), Contains("lattice.mirror"));
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <map>
 
 #include "latfrac/base/error.h"
 #include "latfrac/geometry/lattice.h"
@@ -193,4 +194,40 @@ TEST_CASE("Random lattice: impossible boxes are rejected like regular ones", "[l
   spec.size = {10.0, 0.0, 10.0};
   spec.spacing = -1;
   CHECK_THROWS_AS(build_lattice(spec), InputError);
+}
+
+TEST_CASE("Random lattice: lattice.mirror gives the mirror image of the seed's lattice, node for node",
+          "[lattice][random]") {
+  // Reflecting the points in x maps the Delaunay bonds, Voronoi facets and cells onto
+  // themselves: the same bonds (by node pair), the same areas and volumes, the facet
+  // centroids reflected, and the x faces swapped.
+  const int dim = GENERATE(2, 3);
+  LatticeSpec spec = random_spec(dim, 5);
+  const Lattice plain = build_lattice(spec);
+  spec.mirror = true;
+  const Lattice mirrored = build_lattice(spec);
+  REQUIRE(mirrored.node_count() == plain.node_count());
+  const double lx = plain.extent.x();
+  for (std::int64_t n = 0; n < plain.node_count(); ++n) {
+    INFO("node " << n);
+    CHECK(mirrored.positions[n].x() == lx - plain.positions[n].x());
+    CHECK(mirrored.positions[n].y() == plain.positions[n].y());
+    CHECK(mirrored.positions[n].z() == plain.positions[n].z());
+    CHECK(mirrored.node_volumes[n] == Approx(plain.node_volumes[n]).epsilon(1e-9));
+    CHECK(mirrored.on_face(n, Face::x_min) == plain.on_face(n, Face::x_max));
+    CHECK(mirrored.on_face(n, Face::z_min) == plain.on_face(n, Face::z_min));
+  }
+  std::map<std::pair<std::int64_t, std::int64_t>, std::int64_t> by_pair;
+  for (std::int64_t b = 0; b < plain.bond_count(); ++b) by_pair[{plain.bonds[b].i, plain.bonds[b].j}] = b;
+  REQUIRE(mirrored.bond_count() == plain.bond_count());
+  for (std::int64_t b = 0; b < mirrored.bond_count(); ++b) {
+    const auto found = by_pair.find({mirrored.bonds[b].i, mirrored.bonds[b].j});
+    REQUIRE(found != by_pair.end());
+    const std::int64_t p = found->second;
+    CHECK(mirrored.bond_facet_area[b] == Approx(plain.bond_facet_area[p]).epsilon(1e-9));
+    const Vec3& c = mirrored.bond_facet_centroid[b];
+    const Vec3& d = plain.bond_facet_centroid[p];
+    CHECK(c.x() == Approx(lx - d.x()).margin(1e-9 * lx));
+    CHECK(c.z() == Approx(d.z()).margin(1e-9 * lx));
+  }
 }

@@ -18,6 +18,10 @@ Lattice build_random_lattice(const LatticeSpec& spec) {
 
   const double r = poisson_disk_distance(spec.dim, spec.spacing);
   lattice.positions = poisson_disk_points(spec.dim, lattice.extent, r, spec.seed);
+  // The mirror image of the same points, node for node: a scene and its mirror image
+  // (docs/validation.md checks that faults mirror with the scene).
+  if (spec.mirror)
+    for (Vec3& p : lattice.positions) p.x() = lattice.extent.x() - p.x();
   // The mirror band: 4 r holds every point whose cell could reach a face (an empty ball
   // of the sampler is at most about 2 r across).
   const double min_area = 1e-9 * (spec.dim == 2 ? spec.spacing : spec.spacing * spec.spacing);

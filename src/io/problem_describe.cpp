@@ -120,6 +120,8 @@ std::string describe(const Scene& scene) {
                             : random ? "not used by a random lattice"
                                      : on_off(lattice.next_nearest));
   out.entry("seed", random ? std::to_string(lattice.seed) : "not used by a regular lattice");
+  out.entry("mirror", random ? on_off(lattice.mirror) : "not used by a regular lattice",
+            random && lattice.mirror ? "(the points reflected in x)" : "");
 
   out.section("material");
   out.entry("density", scene.material.density, "kg/m^3");

@@ -6,7 +6,7 @@ namespace latfrac::problem {
 
 LatticeSpec read_lattice(const Section& top) {
   const Section s = top.required_section(
-      "lattice", {"dim", "kind", "spacing", "size", "next_nearest", "seed"});
+      "lattice", {"dim", "kind", "spacing", "size", "next_nearest", "seed", "mirror"});
   LatticeSpec lattice;
   if (!s.has("dim")) s.fail_missing("dim", "allowed: 2 (an x-z section) or 3");
   lattice.dim = static_cast<int>(*s.integer("dim", 2, 3));
@@ -54,6 +54,11 @@ LatticeSpec read_lattice(const Section& top) {
   }
   lattice.seed = static_cast<std::uint64_t>(
       s.integer("seed", 0, std::numeric_limits<std::int64_t>::max()).value_or(0));
+  if (s.has("mirror") && !random) {
+    s.fail("mirror", "only applies to a random lattice (a regular one is its own mirror image)",
+           "allowed: remove it, or set lattice.kind = \"random\"");
+  }
+  lattice.mirror = s.boolean("mirror").value_or(false);
   return lattice;
 }
 

@@ -48,6 +48,7 @@ struct LatticeSpec {
   bool next_nearest = true;             // regular 3-D only: next-nearest bonds at sqrt(2) a
   LatticeKind kind = LatticeKind::regular;
   std::uint64_t seed = 0;  // random only: the point sampler's seed
+  bool mirror = false;     // random only: the points reflected in x (x -> Lx - x)
 };
 
 // delaunay: a random lattice's bond (an edge of the Delaunay triangulation).
