@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # Reproduces docs/validation.md: runs the paper's scenes (problems/fig*.toml with the
 # overrides each figure needs; contact on, as shipped), the same scenes without contact,
-# and Fig. 6 at 707 and 500 m, draws each at its first structure and at its end, and
-# prints the tables of docs/validation.md with the fault analysis of every run.
+# Fig. 6 at 707 and 500 m, and each figure on the complete model
+# (problems/graben-complete-2d.toml with the figure's criterion), draws each at its first
+# structure and at its end, and prints the tables of docs/validation.md with the fault
+# analysis of every run.
 #
 #   bash scripts/validate.sh [build-dir] [figure-dir] [work-dir]
 #
 # build-dir defaults to build/ (the README's build); the pictures go to figure-dir
 # (default docs/figures/validation/, the ones the doc shows), the result files and the
-# fault analyses (JSON) to work-dir (default out/validation/). About three minutes on 2 cores.
+# fault analyses (JSON) to work-dir (default out/validation/). About seven minutes on 2 cores.
 set -euo pipefail
 
 here=$(cd "$(dirname "$0")/.." && pwd)
@@ -130,3 +132,25 @@ run fig6-psi20-event fig6-elliptic-graben-2d.toml --set stepping.method=event \
   --set strength.friction_angle=20
 run fig6-psi45-event fig6-elliptic-graben-2d.toml --set stepping.method=event \
   --set strength.friction_angle=45
+
+# The same figures on latfrac's complete model (problems/graben-complete-2d.toml: random
+# lattice, internal and contact friction, the basal discontinuity, no pre-cut), with each
+# figure's criterion and parameters. Criteria with their own pressure term (tensile,
+# Drucker-Prager) take no internal friction.
+echo
+echo "| run (complete model) | at lambda = $early | at the end | wall |"
+echo "|---|---|---|---|"
+complete=graben-complete-2d.toml
+run complete-4a $complete --set strength.criterion=tensile --set strength.internal_friction=0 \
+  --set strength.bond_stress=critical_plane
+run complete-4b $complete --set strength.criterion=tensile_or_shear
+run complete-6 $complete
+run complete-7a $complete --set strength.friction_angle=30
+run complete-7b $complete --set strength.friction_angle=45
+run complete-7c $complete --set strength.criterion=drucker_prager --set strength.internal_friction=0 \
+  --set strength.friction_angle=30 --set strength.tau0_factor=5
+run complete-7f $complete --set strength.criterion=tensile_or_shear --set strength.sigma0=1e15 \
+  --set strength.tau0_factor=1 --set strength.tau0=141.05e6
+run complete-8 $complete --set lattice.size=[60e3,15e3] --set loading.total=0.02 \
+  --set 'output.snapshots=[0.0005,0.001,0.01,0.02]'
+run complete-3d graben-complete-3d.toml
