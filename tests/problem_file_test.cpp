@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "latfrac/base/error.h"
+#include "latfrac/scene/scene.h"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
@@ -467,4 +468,32 @@ TEST_CASE("[lattice] kind and seed: random lattices, their keys and their range 
              Contains("lattice.mirror: only applies to a random lattice"));
   CHECK(parse_problem(with(random, "seed = 42", "seed = 42\nmirror = true"), "t.toml").lattice.mirror);
   CHECK_THAT(error_of(with(random, "seed = 42", "seed = 42\nmirror = 1")), Contains("lattice.mirror"));
+}
+
+TEST_CASE("every scene says which of the two models it runs", "[io]") {
+  // docs/model.md, "Two models": the paper's model, or the complete model's options
+  // (random lattice, internal friction, contact friction, basal discontinuity, and layers
+  // and heterogeneity beyond them).
+  const std::string problems = LATFRAC_PROBLEMS_DIR;
+  auto label = [&](const std::string& name, const std::vector<std::string>& overrides = {}) {
+    return latfrac::model_label(latfrac::read_problem_file(problems + "/" + name, overrides));
+  };
+  for (const char* name : {"fig4a-tensile-2d.toml", "fig4b-tensile-or-shear-2d.toml",
+                           "fig6-elliptic-graben-2d.toml", "fig7c-drucker-prager-2d.toml",
+                           "reference-3d.toml", "lithostatic-2d.toml"})
+    CHECK(label(name) == "the paper's model");
+  const std::string complete =
+      "the complete model: random lattice, internal friction, contact friction, basal discontinuity";
+  CHECK(label("graben-complete-2d.toml") == complete);
+  CHECK(label("graben-complete-3d.toml") == complete);
+  CHECK(label("graben-complete-2d.toml", {"contact.friction=0", "strength.internal_friction=0"}) ==
+        "the paper's model with: random lattice, basal discontinuity");
+  CHECK(label("fig6-elliptic-graben-random-2d.toml") == "the paper's model with: random lattice");
+  CHECK(label("fig6-elliptic-graben-2d.toml", {"contact.friction=0.6"}) ==
+        "the paper's model with: contact friction");
+  CHECK(label("fig6-elliptic-graben-2d.toml", {"heterogeneity.spread=0.2"}) ==
+        "the paper's model with: heterogeneity");
+  CHECK(label("fig6-elliptic-graben-2d.toml", {"heterogeneity.spread=0"}) == "the paper's model");
+  CHECK(label("graben-complete-2d.toml",
+              {"layer=[{z_min=0, z_max=6e3, young=10e9}]"}) == complete + ", layers");
 }

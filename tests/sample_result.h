@@ -20,7 +20,7 @@ inline RunResult sample_result() {
                        "name = \"graben\"\n# λ ≥ 0, σ₀ = 50 MPa\n" + std::string(100000, 'x'),
                        "2024-05-01T12:34:56Z",
                        18446744073709551557ull};
-  result.scene = {"graben-2d", 2, 250.0, "elliptic", 2000.0};
+  result.scene = {"graben-2d", 2, 250.0, "elliptic", 2000.0, "the paper's model"};
   result.positions = {0, 0, 0, 250, 0, 0, 500, 0, 0, 0, 0, 250, 250, 0, 250.125};
   result.bonds = {0, 1, 1, 2, 0, 3, 1, 4};
   result.bond_kind = {0, 0, 1, -1};

@@ -105,6 +105,7 @@ std::string describe(const Scene& scene) {
   const int dim = scene.lattice.dim;
   out.top("name", scene.name);
   if (!scene.description.empty()) out.top("description", scene.description);
+  out.top("model", model_label(scene));
   if (!scene.source_path.empty()) out.top("source", scene.source_path);
 
   const LatticeSpec& lattice = scene.lattice;

@@ -99,6 +99,7 @@ void write_scene(hid_t file, const SceneInfo& scene) {
   hdf5::write_attribute(file, group, "dim", scene.dim);
   hdf5::write_attribute(file, group, "spacing", scene.spacing);
   hdf5::write_attribute(file, group, "exaggeration", scene.exaggeration);
+  if (!scene.model.empty()) hdf5::write_string_attribute(file, group, "model", scene.model);
 }
 
 // node_index (0 .. N-1) is not part of RunResult: it is the connectivity of the XDMF
@@ -291,6 +292,9 @@ SceneInfo read_scene(hid_t file) {
   scene.dim = hdf5::read_attribute<int>(file, group, "dim");
   scene.spacing = hdf5::read_attribute<double>(file, group, "spacing");
   scene.exaggeration = hdf5::read_attribute<double>(file, group, "exaggeration");
+  // Files written before the two models were named have no "model".
+  if (H5Aexists_by_name(file, group.c_str(), "model", H5P_DEFAULT) > 0)
+    scene.model = hdf5::read_string_attribute(file, group, "model");
   return scene;
 }
 

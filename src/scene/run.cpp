@@ -144,7 +144,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   RunResult result;
   result.provenance = provenance_of(scene, options);
   result.scene = {scene.name, scene.lattice.dim, scene.lattice.spacing, "",
-                  scene.output.exaggeration};
+                  scene.output.exaggeration, model_label(scene)};
 
   // One criterion object, resolved once, gives the model its strengths and the run its f.
   const std::shared_ptr<const FailureCriterion> criterion =
@@ -225,6 +225,7 @@ std::string summary_text(const RunResult& result) {
   text << "summary of " << result.scene.name << " (" << result.scene.dim << "-D, spacing "
        << result.scene.spacing << " m, "
        << (result.scene.criterion.empty() ? "elastic" : result.scene.criterion) << ")\n"
+       << (result.scene.model.empty() ? "" : "  model: " + result.scene.model + "\n")
        << "  nodes " << result.node_count() << ", bonds " << result.bond_count() << "\n"
        << (s.complete ? "" : "  incomplete: written during the run, or the run stopped (latfrac run --resume continues it)\n")
        << "  final lambda " << s.final_lambda << ", bonds broken " << s.breaks << ", events "

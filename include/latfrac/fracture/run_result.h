@@ -30,6 +30,7 @@ struct SceneInfo {
   double spacing = 0;       // m
   std::string criterion;    // "" for an elastic scene
   double exaggeration = 1;  // for pictures
+  std::string model;        // which of the two models (model_label); empty: not recorded
 };
 
 struct BreakEvent {

@@ -97,4 +97,13 @@ struct Scene {
 // The loading schedule a fracture run follows.
 Schedule schedule_of(const Scene& scene);
 
+// Which of the two models a scene runs (docs/model.md, "Two models"): the options it uses
+// beyond the paper's model, in a fixed order ("random lattice", "internal friction",
+// "contact friction", "basal discontinuity", "layers", "heterogeneity"); none for the
+// paper's model.
+std::vector<std::string> complete_model_options(const Scene& scene);
+// "the paper's model"; "the complete model: " and its options when it has the first four
+// (and any more); otherwise "the paper's model with: " and those it has.
+std::string model_label(const Scene& scene);
+
 }  // namespace latfrac
