@@ -66,6 +66,12 @@ void create_group(hid_t file, const std::string& path) {
       .close("H5Gclose", path);
 }
 
+bool has_attribute(hid_t file, const std::string& object, const char* name) {
+  const htri_t found = H5Aexists_by_name(file, object.c_str(), name, H5P_DEFAULT);
+  if (found < 0) fail("H5Aexists_by_name", attribute_label(object, name));
+  return found > 0;
+}
+
 bool exists(hid_t file, const std::string& path) {
   for (std::size_t end = path.find('/', 1);; end = path.find('/', end + 1)) {
     const std::string prefix = path.substr(0, end);

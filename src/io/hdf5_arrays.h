@@ -56,6 +56,9 @@ std::string shape_text(const Shape& shape);  // "5 x 3"
 
 void create_group(hid_t file, const std::string& path);
 bool exists(hid_t file, const std::string& path);  // every component of path is a link
+// True when the object at `object` has the attribute `name` (for attributes that older
+// files lack).
+bool has_attribute(hid_t file, const std::string& object, const char* name);
 void require(hid_t file, const std::string& path, const char* what);  // InputError if absent
 hsize_t link_count(hid_t file, const std::string& group_path);
 

@@ -293,7 +293,7 @@ SceneInfo read_scene(hid_t file) {
   scene.spacing = hdf5::read_attribute<double>(file, group, "spacing");
   scene.exaggeration = hdf5::read_attribute<double>(file, group, "exaggeration");
   // Files written before the two models were named have no "model".
-  if (H5Aexists_by_name(file, group.c_str(), "model", H5P_DEFAULT) > 0)
+  if (hdf5::has_attribute(file, group, "model"))
     scene.model = hdf5::read_string_attribute(file, group, "model");
   return scene;
 }
@@ -343,7 +343,7 @@ RunSummary read_summary(hid_t file) {
   summary.factor_updates = hdf5::read_attribute<std::int64_t>(file, group, "factor_updates");
   // Counters added after the first result files: absent means zero.
   auto optional_count = [&](const char* name) -> std::int64_t {
-    return H5Aexists_by_name(file, group.c_str(), name, H5P_DEFAULT) > 0
+    return hdf5::has_attribute(file, group, name)
                ? hdf5::read_attribute<std::int64_t>(file, group, name)
                : 0;
   };
@@ -351,13 +351,13 @@ RunSummary read_summary(hid_t file) {
   summary.relaxation_sweeps = optional_count("relaxation_sweeps");
   summary.relaxation_unconverged = optional_count("relaxation_unconverged");
   summary.final_lambda = hdf5::read_attribute<double>(file, group, "final_lambda");
-  if (H5Aexists_by_name(file, group.c_str(), "friction_work", H5P_DEFAULT) > 0) {
+  if (hdf5::has_attribute(file, group, "friction_work")) {
     summary.contact_slip = hdf5::read_attribute<double>(file, group, "contact_slip");
     summary.friction_work = hdf5::read_attribute<double>(file, group, "friction_work");
   }
   summary.wall_seconds = hdf5::read_attribute<double>(file, group, "wall_seconds");
   // Files written before runs were written as they went are complete.
-  summary.complete = H5Aexists_by_name(file, group.c_str(), "complete", H5P_DEFAULT) <= 0 ||
+  summary.complete = !hdf5::has_attribute(file, group, "complete") ||
                      hdf5::read_attribute<std::uint8_t>(file, group, "complete") != 0;
   return summary;
 }

@@ -1,6 +1,9 @@
 // What a scene asks of the layers below it.
 #include "latfrac/scene/scene.h"
 
+#include <algorithm>
+#include <array>
+
 namespace latfrac {
 
 Schedule schedule_of(const Scene& scene) {
@@ -24,7 +27,9 @@ std::string model_label(const Scene& scene) {
   const std::vector<std::string> options = complete_model_options(scene);
   if (options.empty()) return "the paper's model";
   // The complete model has the first four; fewer is the paper's model with some of them.
-  const bool complete = options.size() >= 4 && options[3] == "basal discontinuity";
+  const bool complete = std::ranges::all_of(
+      std::array{"random lattice", "internal friction", "contact friction", "basal discontinuity"},
+      [&](const char* core) { return std::ranges::find(options, core) != options.end(); });
   std::string label = complete ? "the complete model: " : "the paper's model with: ";
   for (std::size_t k = 0; k < options.size(); ++k) label += (k ? ", " : "") + options[k];
   return label;
