@@ -145,7 +145,7 @@ PathStresses FailureEvaluator::path_stresses(const Model& model, const Vector& a
   if (uses_tensor_) {
     // On an affine path the law is linear, and so is the virial in the displacement.
     path.stress_at_zero = node_stresses(model, at_zero);
-    path.stress_per_unit = node_stresses(model, path.per_unit);
+    path.stress_per_unit = node_stress_rates(model, path.per_unit);
   }
   return path;
 }

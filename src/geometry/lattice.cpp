@@ -101,6 +101,44 @@ std::uint8_t faces_of(const Vec3& position, const Vec3& extent, int dim, double 
   return mask;
 }
 
+// The pieces of the faces that close the cells of a random lattice's face nodes, from the
+// bonds' facets alone. A closed cell has sum over its facets A (c - X) (x) n = V I and
+// sum A n = 0 (n outward), so what the bonds' facets leave of these sums is the face
+// pieces': the normal n_f of a piece gives its area A_f = -n_f . sum_b A_b n_b and its
+// arm c_f - X = M n_f / A_f, with M = V I - sum_b A_b (c_b - X) (x) n_b (a corner node's
+// pieces have orthogonal normals, so each is read off on its own).
+std::vector<FacePiece> face_pieces_of(const Lattice& lattice) {
+  const std::int64_t nodes = lattice.node_count();
+  std::vector<Vec3> area_normal(nodes, Vec3::Zero());
+  std::vector<Mat3> moment(nodes, Mat3::Zero());
+  for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
+    const Bond& bond = lattice.bonds[b];
+    const Vec3& n = lattice.bond_direction[b];  // outward from i, inward to j
+    const double area = lattice.bond_facet_area[b];
+    const Vec3& c = lattice.bond_facet_centroid[b];
+    area_normal[bond.i] += area * n;
+    area_normal[bond.j] -= area * n;
+    moment[bond.i] += area * (c - lattice.positions[bond.i]) * n.transpose();
+    moment[bond.j] -= area * (c - lattice.positions[bond.j]) * n.transpose();
+  }
+  Mat3 plane = Mat3::Identity();
+  if (lattice.dim == 2) plane(1, 1) = 0;
+  const double least = 1e-9 * std::pow(lattice.spacing, lattice.dim - 1);
+  std::vector<FacePiece> pieces;
+  for (std::int64_t node = 0; node < nodes; ++node) {
+    for (int f = 0; f < face_count; ++f) {
+      if (!lattice.on_face(node, static_cast<Face>(f))) continue;
+      const int axis = f / 2;
+      const Vec3 normal = (f % 2 == 0 ? -1.0 : 1.0) * Vec3::Unit(axis);
+      const double area = -normal.dot(area_normal[node]);
+      if (area <= least) continue;
+      const Mat3 rest = lattice.node_volumes[node] * plane - moment[node];
+      pieces.push_back({node, axis, area, rest * normal / area});
+    }
+  }
+  return pieces;
+}
+
 // All pairs at distance a (and sqrt(2) a when wanted), found through a cell grid.
 std::vector<Bond> find_bonds(const std::vector<Vec3>& positions, double a, bool next_nearest) {
   const double reach = next_nearest ? std::sqrt(2.0) * a : a;
@@ -176,6 +214,7 @@ Lattice build_lattice(const LatticeSpec& spec) {
     lattice.bond_length.push_back(d0.norm());
     lattice.bond_direction.push_back(d0.normalized());
   }
+  if (lattice.is_random()) lattice.face_pieces = face_pieces_of(lattice);
   return lattice;
 }
 

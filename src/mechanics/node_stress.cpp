@@ -5,6 +5,57 @@
 namespace latfrac {
 namespace {
 
+void add_dyad(bool plane, Mat3& to, const Vec3& arm, const Vec3& t) {
+  if (!plane) {
+    to.noalias() += arm * t.transpose();
+    return;
+  }
+  to(0, 0) += arm.x() * t.x();
+  to(0, 2) += arm.x() * t.z();
+  to(2, 0) += arm.z() * t.x();
+  to(2, 2) += arm.z() * t.z();
+}
+
+// The supports' forces on a random lattice's face nodes, each at its face piece: a held
+// component's force is what balances the node's intact bonds (`bond_force`, their force
+// on the node) and, with the loads, its weight. It goes to the piece whose normal is that
+// axis, or else (a base held along x under a basal discontinuity) to the node's first.
+void add_support_dyads(const Model& model, const Vector& displacement, bool with_loads,
+                       std::vector<Mat3>& sum) {
+  const Lattice& lattice = model.lattice;
+  if (lattice.face_pieces.empty()) return;
+  const int dim = lattice.dim;
+  std::vector<Vec3> bond_force(lattice.node_count(), Vec3::Zero());
+  for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
+    if (!model.intact(b)) continue;
+    const Bond& bond = lattice.bonds[b];
+    if (!lattice.face_mask[bond.i] && !lattice.face_mask[bond.j]) continue;
+    const Vec3 t = model.bond_law().tension(model.springs(b), PairState::intact,
+                                            model.bond_displacement(displacement, b));
+    bond_force[bond.i] += t;
+    bond_force[bond.j] -= t;
+  }
+  const std::vector<int> axes = lattice.axes();
+  const auto& pieces = lattice.face_pieces;
+  for (std::size_t first = 0; first < pieces.size();) {
+    const std::int64_t node = pieces[first].node;
+    std::size_t last = first;
+    while (last < pieces.size() && pieces[last].node == node) ++last;
+    for (int c = 0; c < dim; ++c) {
+      const std::int64_t dof = node * dim + c;
+      if (model.dofs().free_index[dof] >= 0) continue;
+      const int axis = axes[c];
+      double support = -bond_force[node][axis];
+      if (with_loads) support -= model.external_force[dof];
+      const FacePiece* piece = &pieces[first];
+      for (std::size_t k = first; k < last; ++k)
+        if (pieces[k].axis == axis) piece = &pieces[k];
+      add_dyad(dim == 2, sum[node], piece->arm, support * Vec3::Unit(axis));
+    }
+    first = last;
+  }
+}
+
 // Per node, the sum over its intact bonds of arm (x) force. In 2-D only the x-z block is
 // summed: the y row and column stay zero, and the sweep runs after every event.
 std::vector<Mat3> bond_dyads(const Model& model, const Vector& displacement) {
@@ -40,11 +91,10 @@ std::vector<Mat3> bond_dyads(const Model& model, const Vector& displacement) {
   return sum;
 }
 
-}  // namespace
-
-std::vector<double> node_stresses(const Model& model, const Vector& displacement) {
+std::vector<double> stresses(const Model& model, const Vector& displacement, bool with_loads) {
   const Lattice& lattice = model.lattice;
-  const std::vector<Mat3> sum = bond_dyads(model, displacement);
+  std::vector<Mat3> sum = bond_dyads(model, displacement);
+  add_support_dyads(model, displacement, with_loads, sum);
   std::vector<double> voigt(lattice.node_count() * 6);
   const double scale = 1.0 / (2 * lattice.node_volume);
   for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
@@ -59,6 +109,16 @@ std::vector<double> node_stresses(const Model& model, const Vector& displacement
     v[5] = s(0, 1);
   }
   return voigt;
+}
+
+}  // namespace
+
+std::vector<double> node_stresses(const Model& model, const Vector& displacement) {
+  return stresses(model, displacement, true);
+}
+
+std::vector<double> node_stress_rates(const Model& model, const Vector& direction) {
+  return stresses(model, direction, false);
 }
 
 }  // namespace latfrac

@@ -59,6 +59,16 @@ struct Bond {
   BondKind kind = BondKind::nearest;
 };
 
+// A random lattice's node on a face of the box owns a piece of that face: the part of its
+// Voronoi cell's boundary that the face closes. What the face's support pushes on the node
+// acts there (node_stress.h).
+struct FacePiece {
+  std::int64_t node = 0;
+  int axis = 0;             // the face's normal axis: 0 x, 1 y, 2 z
+  double area = 0;          // m^2 (2-D: m)
+  Vec3 arm = Vec3::Zero();  // the piece's centroid minus the node's position, m
+};
+
 class Lattice {
  public:
   int dim = 2;
@@ -76,6 +86,7 @@ class Lattice {
   std::vector<double> node_volumes;       // V_i: the Voronoi cell in the box, m^3 (2-D: m^2)
   std::vector<double> bond_facet_area;    // A_b: the shared Voronoi facet, m^2 (2-D: m)
   std::vector<Vec3> bond_facet_centroid;  // c_b: the centroid of that facet, m
+  std::vector<FacePiece> face_pieces;     // per node and face it is on, in node order
 
   bool is_random() const { return kind == LatticeKind::random; }
   // The volume node n stands for: V0, or its Voronoi cell's in a random lattice.

@@ -12,7 +12,11 @@
 // Over a closed cell sum A_b (c_b - X_i) (x) n_b = V_i I, so a uniform stress gives every
 // node exactly that stress; the branch form, with arms d_b / 2 that do not end on the
 // cell's facets, adds a scatter of about 7 % (rms over mean) that is pure geometry. A node
-// on a free surface has a cell that ends at the surface and reads the stress there.
+// on a free surface has a cell that ends at the surface and reads the stress there. A node
+// that a face holds has the support's force on its piece of the face (Lattice::face_pieces)
+// in the sum as well, sym((c_f - X_i) (x) R_k e_k) per held component k, with R_k what
+// balances its intact bonds and (with the loads) its weight: without it the cell is not
+// closed and the node reads a shear the face does not carry (docs/model.md, section 6).
 //
 // In 2-D plane strain the out-of-plane stress is sigma_yy = nu (sigma_xx + sigma_zz).
 #pragma once
@@ -25,5 +29,8 @@ namespace latfrac {
 
 // Voigt order per node: xx, yy, zz, yz, xz, xy (Pa), N x 6 row-major.
 std::vector<double> node_stresses(const Model& model, const Vector& displacement);
+// The part linear in the displacement: the stresses' change along a path's direction
+// (without the loads the supports' forces balance in node_stresses).
+std::vector<double> node_stress_rates(const Model& model, const Vector& direction);
 
 }  // namespace latfrac
