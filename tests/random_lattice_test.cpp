@@ -133,6 +133,39 @@ TEST_CASE("Random lattice: the Voronoi cells tile the box and obey the divergenc
   CHECK(moment_error < 1e-10);
 }
 
+TEST_CASE("Random lattice: the face nodes' pieces tile each face of the box", "[lattice][random]") {
+  // The pieces are read off what the bonds' facets leave of each face node's cell
+  // (Lattice::face_pieces); the box's faces are known independently. Each face must be
+  // covered once: the pieces' areas sum to the face's area, their area-weighted centroids
+  // to the face's centre, and every centroid lies in the face's plane.
+  const int dim = GENERATE(2, 3);
+  const Lattice lattice = build_lattice(random_spec(dim, 5));
+  for (int f = 0; f < face_count; ++f) {
+    const int axis = f / 2;
+    if (dim == 2 && axis == 1) continue;
+    double area = 0, off_plane = 0;
+    Vec3 moment = Vec3::Zero();
+    const double plane = f % 2 == 0 ? 0.0 : lattice.extent[axis];
+    for (const FacePiece& piece : lattice.face_pieces) {
+      if (piece.axis != axis || !lattice.on_face(piece.node, static_cast<Face>(f))) continue;
+      const Vec3 centroid = lattice.positions[piece.node] + piece.arm;
+      off_plane = std::max(off_plane, std::abs(centroid[axis] - plane));
+      area += piece.area;
+      moment += piece.area * centroid;
+    }
+    double expected = 1;
+    for (int other : lattice.axes())
+      if (other != axis) expected *= lattice.extent[other];
+    Vec3 centre = lattice.extent / 2;
+    centre[axis] = plane;
+    INFO(dim << "-D, face " << to_string(static_cast<Face>(f)) << ": pieces' area " << area
+             << " of " << expected << ", largest distance off the plane " << off_plane);
+    CHECK(area == Approx(expected).epsilon(1e-10));
+    CHECK((moment / area - centre).norm() < 1e-9 * lattice.extent.maxCoeff());
+    CHECK(off_plane < 1e-9 * lattice.extent.maxCoeff());
+  }
+}
+
 TEST_CASE("Random lattice: the mean spacing gives the regular lattice's node density",
           "[lattice][random]") {
   // Nodes per volume away from the faces (whose own points add a skin), against the
