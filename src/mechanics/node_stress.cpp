@@ -20,21 +20,10 @@ void add_dyad(bool plane, Mat3& to, const Vec3& arm, const Vec3& t) {
 // component's force is what balances the node's intact bonds (`bond_force`, their force
 // on the node) and, with the loads, its weight. It goes to the piece whose normal is that
 // axis, or else (a base held along x under a basal discontinuity) to the node's first.
-void add_support_dyads(const Model& model, const Vector& displacement, bool with_loads,
-                       std::vector<Mat3>& sum) {
+void add_support_dyads(const Model& model, const std::vector<Vec3>& bond_force,
+                       bool with_loads, std::vector<Mat3>& sum) {
   const Lattice& lattice = model.lattice;
-  if (lattice.face_pieces.empty()) return;
   const int dim = lattice.dim;
-  std::vector<Vec3> bond_force(lattice.node_count(), Vec3::Zero());
-  for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
-    if (!model.intact(b)) continue;
-    const Bond& bond = lattice.bonds[b];
-    if (!lattice.face_mask[bond.i] && !lattice.face_mask[bond.j]) continue;
-    const Vec3 t = model.bond_law().tension(model.springs(b), PairState::intact,
-                                            model.bond_displacement(displacement, b));
-    bond_force[bond.i] += t;
-    bond_force[bond.j] -= t;
-  }
   const std::vector<int> axes = lattice.axes();
   const auto& pieces = lattice.face_pieces;
   for (std::size_t first = 0; first < pieces.size();) {
@@ -57,21 +46,13 @@ void add_support_dyads(const Model& model, const Vector& displacement, bool with
 }
 
 // Per node, the sum over its intact bonds of arm (x) force. In 2-D only the x-z block is
-// summed: the y row and column stay zero, and the sweep runs after every event.
-std::vector<Mat3> bond_dyads(const Model& model, const Vector& displacement) {
+// summed: the y row and column stay zero, and the sweep runs after every event. With
+// `bond_force`, also each node's force from its intact bonds (random lattices).
+std::vector<Mat3> bond_dyads(const Model& model, const Vector& displacement,
+                             std::vector<Vec3>* bond_force) {
   const Lattice& lattice = model.lattice;
   std::vector<Mat3> sum(lattice.node_count(), Mat3::Zero());
   const bool plane = lattice.dim == 2;
-  auto add = [plane](Mat3& to, const Vec3& arm, const Vec3& t) {
-    if (!plane) {
-      to.noalias() += arm * t.transpose();
-      return;
-    }
-    to(0, 0) += arm.x() * t.x();
-    to(0, 2) += arm.x() * t.z();
-    to(2, 0) += arm.z() * t.x();
-    to(2, 2) += arm.z() * t.z();
-  };
   for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
     if (!model.intact(b)) continue;
     const Bond& bond = lattice.bonds[b];
@@ -80,21 +61,27 @@ std::vector<Mat3> bond_dyads(const Model& model, const Vector& displacement) {
     if (lattice.is_random()) {
       // t acts on i, -t on j; each node's arm reaches to the facet's centroid.
       const Vec3& centroid = lattice.bond_facet_centroid[b];
-      add(sum[bond.i], centroid - lattice.positions[bond.i], t);
-      add(sum[bond.j], lattice.positions[bond.j] - centroid, t);
+      add_dyad(plane, sum[bond.i], centroid - lattice.positions[bond.i], t);
+      add_dyad(plane, sum[bond.j], lattice.positions[bond.j] - centroid, t);
+      if (bond_force) {
+        (*bond_force)[bond.i] += t;
+        (*bond_force)[bond.j] -= t;
+      }
       continue;
     }
     const Vec3 d0 = lattice.bond_direction[b] * lattice.bond_length[b];
-    add(sum[bond.i], d0, t);
-    add(sum[bond.j], d0, t);
+    add_dyad(plane, sum[bond.i], d0, t);
+    add_dyad(plane, sum[bond.j], d0, t);
   }
   return sum;
 }
 
 std::vector<double> stresses(const Model& model, const Vector& displacement, bool with_loads) {
   const Lattice& lattice = model.lattice;
-  std::vector<Mat3> sum = bond_dyads(model, displacement);
-  add_support_dyads(model, displacement, with_loads, sum);
+  const bool supports = !lattice.face_pieces.empty();
+  std::vector<Vec3> bond_force(supports ? lattice.node_count() : 0, Vec3::Zero());
+  std::vector<Mat3> sum = bond_dyads(model, displacement, supports ? &bond_force : nullptr);
+  if (supports) add_support_dyads(model, bond_force, with_loads, sum);
   std::vector<double> voigt(lattice.node_count() * 6);
   const double scale = 1.0 / (2 * lattice.node_volume);
   for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
