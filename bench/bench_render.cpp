@@ -32,7 +32,7 @@ RunResult made_up_snapshot(int dim, double spacing, bool shattered = false) {
   const Lattice lattice = build_lattice({dim, spacing, {length, width, height}, true});
   RunResult result;
   result.scene = {std::string(dim == 2 ? "bench-2d" : "bench-3d") + (shattered ? "-shattered" : ""),
-                  dim, spacing, "elliptic", 1.0};
+                  dim, spacing, "elliptic", 1.0, ""};
   for (const Vec3& p : lattice.positions) result.positions.insert(result.positions.end(), {p[0], p[1], p[2]});
   const double top = lattice.extent[2];
   // Two faults dipping 60 degrees towards x = 30 km, from 25 and 35 km at the surface.

@@ -62,13 +62,13 @@ broken = f["broken_bonds"]
 g = f["graben"]
 if g:
     dips = [(x["dip_deg"], x["side"]) for x in g["faults"]]
-    inside = sum(f["faults"][x["fault"]]["bonds"] for x in g["faults"])
+    outside = g["share_outside"]
     off = max(abs(dip - anderson) for dip, _ in dips)
     text = " / ".join(f"{dip:.1f} ({side})" for dip, side in dips)
     print(f"| {phi} | {anderson:.1f} | {spacing} | {seed} | {broken} | {text} | {off:.1f} | "
-          f"{(broken - inside) / broken:.2f} | {d['wall_seconds']:.0f} |")
+          f"{outside:.2f} | {d['wall_seconds']:.0f} |")
     with open(rows, "a") as r:
-        r.write(f"{phi}\t{spacing}\t{seed}\t{dips[0][0]}\t{dips[1][0]}\t{(broken - inside) / broken}\n")
+        r.write(f"{phi}\t{spacing}\t{seed}\t{dips[0][0]}\t{dips[1][0]}\t{outside}\n")
 else:
     print(f"| {phi} | {anderson:.1f} | {spacing} | {seed} | {broken} | no graben | - | 1.00 | "
           f"{d['wall_seconds']:.0f} |")

@@ -1,6 +1,7 @@
 // Fault roles: hand-placed graben, pre-cut and wall faults give their roles, dips and sides.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "latfrac/analysis/fault_analysis.h"
@@ -17,6 +18,13 @@ constexpr double kWidth = kGrabenWidth;
 constexpr double kLeftDip = 55, kRightDip = 65;  // the graben's arms, deg
 
 Layout graben_layout(bool mirrored) { return graben_with_precut(kLeftDip, kRightDip, mirrored); }
+
+// "46 %": a share as the text report prints it.
+std::string format_percent(double share) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.0f %%", 100 * share);
+  return text;
+}
 
 std::size_t count_role(const FaultReport& report, FaultRole role) {
   return std::count_if(report.faults.begin(), report.faults.end(),
@@ -64,6 +72,13 @@ TEST_CASE("The graben's faults, the pre-cut fault and the wall fault get their r
   CHECK(left.alpha_deg == Approx(90 - left.dip_deg));
   CHECK(left.bonds + right.bonds == static_cast<std::int64_t>(layout.graben));
   CHECK(graben.surface_subsidence == Approx(10.0).epsilon(0.01));
+  // The bonds off the graben's faults, counted from the layout: the wall fault's and the
+  // other cluster's.
+  const double outside = static_cast<double>(layout.wall + layout.other) /
+                         static_cast<double>(layout.wall + layout.graben + layout.other);
+  CHECK(share_outside_graben(report) == Approx(outside).epsilon(1e-12));
+  CHECK(outside > 0.1);
+  CHECK(outside < 0.9);
 
   // The pre-cut fault leaves the cut's tip: the right arm, or the left one mirrored.
   REQUIRE(report.precut_fault);
@@ -78,7 +93,10 @@ TEST_CASE("The graben's faults, the pre-cut fault and the wall fault get their r
   CHECK(json.find("\"precut_fault\": {\"fault\": " + std::to_string(*report.precut_fault) +
                   ", \"side\": \"" + (mirrored ? "+x" : "-x") + "\"") != std::string::npos);
   CHECK(json.find("\"role\": \"wall\"") != std::string::npos);
+  CHECK(json.find("\"share_outside\": ") != std::string::npos);
   const std::string text = to_text(report);
+  CHECK(text.find(format_percent(outside) + " of the broken bonds outside these two") !=
+        std::string::npos);
   CHECK(text.find("pre-cut fault: " + std::to_string(*report.precut_fault + 1) + " (dips to " +
                   (mirrored ? "+x" : "-x")) != std::string::npos);
   CHECK(text.find("wall faults: 1\n") != std::string::npos);
@@ -127,6 +145,7 @@ TEST_CASE("A fault is a wall fault when most of it lies within 3 spacings of a s
   const std::string json = to_json(report);
   CHECK(json.find("\"graben\": null, \"precut_fault\": null") != std::string::npos);
   CHECK(to_text(report).find("pre-cut fault: none (the run has no pre-cut)") != std::string::npos);
+  CHECK(share_outside_graben(report) == 1.0);  // no graben: every broken bond is off it
 }
 
 TEST_CASE("A graben fault reaching the surface at the wall's corner is no wall fault",

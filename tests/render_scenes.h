@@ -88,7 +88,7 @@ inline void add_snapshot(RunResult& result, double lambda) {
 // i + columns k, at x = (i + k/2 mod 1) a, z = k a sqrt(3)/2.
 inline RunResult triangular_patch(int columns = 10, int rows = 6) {
   RunResult result;
-  result.scene = {"patch-2d", 2, render_spacing, "elliptic", 1.0};
+  result.scene = {"patch-2d", 2, render_spacing, "elliptic", 1.0, ""};
   for (int k = 0; k < rows; ++k)
     for (int i = 0; i < columns; ++i)
       result.positions.insert(result.positions.end(), {(i + 0.5 * (k % 2)) * render_spacing, 0.0,
@@ -101,7 +101,7 @@ inline RunResult triangular_patch(int columns = 10, int rows = 6) {
 // A cubic block of 10 x 3 x 6 nodes; node (i, j, k) is i + 10 j + 30 k at (i, j, k) a.
 inline RunResult cubic_block() {
   RunResult result;
-  result.scene = {"block-3d", 3, render_spacing, "", 1.0};
+  result.scene = {"block-3d", 3, render_spacing, "", 1.0, ""};
   for (int k = 0; k < 6; ++k)
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 10; ++i)

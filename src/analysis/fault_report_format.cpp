@@ -37,6 +37,20 @@ std::string json_side(int direction) {
   return side;
 }
 
+}  // namespace
+
+double share_outside_graben(const FaultReport& report) {
+  if (!report.graben) return 1;
+  if (report.broken_bonds == 0) return 0;
+  const Graben& graben = report.grabens[*report.graben];
+  const std::int64_t inside =
+      report.faults[graben.left_fault].bonds + report.faults[graben.right_fault].bonds;
+  return static_cast<double>(report.broken_bonds - inside) /
+         static_cast<double>(report.broken_bonds);
+}
+
+namespace {
+
 // "2 (dips to +x, dip 60.3, alpha 29.7)": a fault by its table number.
 std::string fault_text(const FaultReport& report, std::size_t f) {
   const Fault& fault = report.faults[f];
@@ -51,7 +65,8 @@ std::string roles_text(const FaultReport& report) {
     const Graben& graben = report.grabens[*report.graben];
     text += "faults " + fault_text(report, graben.left_fault) + " and " +
             fault_text(report, graben.right_fault) +
-            format("; subsidence %.5g m\n", graben.surface_subsidence);
+            format("; subsidence %.5g m; %.0f %% of the broken bonds outside these two\n",
+                   graben.surface_subsidence, 100 * share_outside_graben(report));
   } else {
     text += "none\n";
   }
@@ -88,7 +103,8 @@ std::string json_roles(const FaultReport& report) {
     json += "{\"index\": " + std::to_string(*report.graben) + ", \"faults\": [" +
             json_fault_angles(report, graben.left_fault) + "}, " +
             json_fault_angles(report, graben.right_fault) +
-            "}], \"subsidence_m\": " + json_number(graben.surface_subsidence) + "}";
+            "}], \"subsidence_m\": " + json_number(graben.surface_subsidence) +
+            ", \"share_outside\": " + json_number(share_outside_graben(report)) + "}";
   } else {
     json += "null";
   }

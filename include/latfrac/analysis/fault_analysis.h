@@ -122,6 +122,11 @@ inline constexpr std::size_t kLastSnapshot = std::numeric_limits<std::size_t>::m
 FaultReport analyze_faults(const RunResult& result, std::size_t index = kLastSnapshot,
                            const FaultOptions& options = {});
 
+// The share of the broken bonds (pre-cuts excluded) outside the two faults of the graben
+// (FaultReport::graben): the faults issue's measure of how much damage lies off the faults.
+// 1 when there is no graben, 0 when nothing broke.
+double share_outside_graben(const FaultReport& report);
+
 // A readable table for `latfrac analyze`.
 std::string to_text(const FaultReport& report);
 // One JSON object; non-finite numbers are written as null.
