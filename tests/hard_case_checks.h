@@ -93,7 +93,10 @@ inline Balance balance(const FinalState& state) {
   const auto [part, supported] = supported_parts(model);
   const Vector force = model.internal_force(state.displacement) - model.external_force;
   const Vector unloaded = model.residual(Vector::Zero(model.dofs().free_count), state.lambda);
-  const double load = max_abs(unloaded);
+  // A prestressed body's weight and prestress balance at rest: its scale is the weight.
+  const double load = std::max(max_abs(unloaded), model.has_prestress()
+                                                      ? max_abs(model.free_part(model.external_force))
+                                                      : 0.0);
   Balance result;
   double worst = 0;
   std::vector<std::uint8_t> held(nodes, 0);

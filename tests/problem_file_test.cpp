@@ -470,6 +470,21 @@ TEST_CASE("[lattice] kind and seed: random lattices, their keys and their range 
   CHECK_THAT(error_of(with(random, "seed = 42", "seed = 42\nmirror = 1")), Contains("lattice.mirror"));
 }
 
+TEST_CASE("[gravity] initial_stress: lithostatic on random lattices with small kinematics only",
+          "[io][initial_stress]") {
+  const std::string random =
+      with(minimal, "spacing = 500", "kind = \"random\"\nseed = 42\nspacing = 500");
+  CHECK_FALSE(parse_problem(minimal + "[gravity]\n", "t.toml").gravity->lithostatic);
+  CHECK(parse_problem(random + "[gravity]\ninitial_stress = \"lithostatic\"\n", "t.toml")
+            .gravity->lithostatic);
+  CHECK_THAT(error_of(minimal + "[gravity]\ninitial_stress = \"lithostatic\"\n"),
+             Contains("gravity.initial_stress: \"lithostatic\" on a triangular lattice"));
+  CHECK_THAT(error_of(random + "[gravity]\ninitial_stress = \"lithostatic\"\n[large_kinematics]\n"),
+             Contains("large_kinematics.enabled: large kinematics with gravity.initial_stress"));
+  CHECK_THAT(error_of(random + "[gravity]\ninitial_stress = \"k0\"\n"),
+             Contains("gravity.initial_stress"));
+}
+
 TEST_CASE("every scene says which of the two models it runs", "[io]") {
   // docs/model.md, "Two models": the paper's model, or the complete model's options
   // (random lattice, internal friction, contact friction, basal discontinuity, and layers

@@ -171,7 +171,7 @@ double FailureEvaluator::first_crossing(const Model& model, std::int64_t b,
   const Vec3& n0 = model.lattice.bond_direction[b];
   const double length = model.lattice.bond_length[b];
   const Vec3 du0 = model.bond_displacement(path.at_zero, b);
-  const Vec3 du1 = model.bond_displacement(path.per_unit, b);
+  const Vec3 du1 = model.relative_motion(path.per_unit, b);
   const double e = model.bond_young[b] / length, g = model.bond_shear_modulus[b] / length;
   AffineBondStress affine;
   affine.normal0 = e * n0.dot(du0);

@@ -17,7 +17,7 @@ double PairSwitchSource::propose(const AffinePath& path, double from, double to)
     if (!model.contact_capable(b)) continue;
     const PairSwitch change = model.law_of(b)->next_switch(
         model.springs(b), model.state(b), model.bond_displacement(full.at_zero, b),
-        sign * model.bond_displacement(full.per_lambda, b), s_from, s_to,
+        sign * model.relative_motion(full.per_lambda, b), s_from, s_to,
         switch_at_start_ && !unstable_.contains(b));
     if (change.found() && change.s < first) {
       first = change.s;

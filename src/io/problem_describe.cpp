@@ -145,6 +145,7 @@ std::string describe(const Scene& scene) {
   if (scene.gravity) {
     out.section("gravity");
     out.entry("g", scene.gravity->g, "m/s^2");
+    out.entry("initial_stress", std::string(scene.gravity->lithostatic ? "lithostatic" : "elastic"));
   } else {
     out.off("gravity");
   }

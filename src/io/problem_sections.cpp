@@ -251,8 +251,16 @@ std::vector<Layer> read_layers(const Section& top, const Scene& scene) {
 }
 
 void read_effects(const Section& top, Scene& scene) {
-  if (const auto s = top.section("gravity", {"g"})) {
+  if (const auto s = top.section("gravity", {"g", "initial_stress"})) {
     scene.gravity = Gravity{s->number("g", non_negative("m/s^2"), 9.81)};
+    scene.gravity->lithostatic = s->choice("initial_stress", {"elastic", "lithostatic"}).value_or(0) == 1;
+    if (scene.gravity->lithostatic && scene.lattice.kind != LatticeKind::random) {
+      s->fail("initial_stress",
+              std::string("\"lithostatic\" on a ") +
+                  lattice_kind_name(scene.lattice.dim, scene.lattice.kind) +
+                  " lattice (a bond's prestress is its Voronoi facet's share of the stress)",
+              "allowed: \"lithostatic\" with lattice.kind = \"random\", or \"elastic\"");
+    }
   }
   if (const auto s = top.section("contact", {"enabled", "friction", "friction_facets"})) {
     const double friction = s->number("friction", non_negative(), 0.0);
@@ -277,6 +285,11 @@ void read_effects(const Section& top, Scene& scene) {
   }
   if (const auto s = top.section("large_kinematics", {"enabled"})) {
     scene.large_kinematics = s->boolean("enabled").value_or(true);
+    if (scene.large_kinematics && scene.gravity && scene.gravity->lithostatic)
+      s->fail("enabled",
+              "large kinematics with gravity.initial_stress = \"lithostatic\" (a prestretch "
+              "along the bond's reference direction is a small-kinematics notion)",
+              "allowed: large_kinematics.enabled = false, or gravity.initial_stress = \"elastic\"");
   }
   if (const auto s = top.section("heterogeneity", {"spread", "seed"})) {
     Heterogeneity heterogeneity;

@@ -47,8 +47,9 @@ void add_support_dyads(const Model& model, const std::vector<Vec3>& bond_force,
 
 // Per node, the sum over its intact bonds of arm (x) force. In 2-D only the x-z block is
 // summed: the y row and column stay zero, and the sweep runs after every event. With
-// `bond_force`, also each node's force from its intact bonds (random lattices).
-std::vector<Mat3> bond_dyads(const Model& model, const Vector& displacement,
+// `bond_force`, also each node's force from its intact bonds (random lattices). A rate
+// (`state` false) reads u_j - u_i alone: the bonds' prestretch is part of the state.
+std::vector<Mat3> bond_dyads(const Model& model, const Vector& displacement, bool state,
                              std::vector<Vec3>* bond_force) {
   const Lattice& lattice = model.lattice;
   std::vector<Mat3> sum(lattice.node_count(), Mat3::Zero());
@@ -57,7 +58,8 @@ std::vector<Mat3> bond_dyads(const Model& model, const Vector& displacement,
     if (!model.intact(b)) continue;
     const Bond& bond = lattice.bonds[b];
     const Vec3 t = model.bond_law().tension(model.springs(b), PairState::intact,
-                                            model.bond_displacement(displacement, b));
+                                            state ? model.bond_displacement(displacement, b)
+                                                  : model.relative_motion(displacement, b));
     if (lattice.is_random()) {
       // t acts on i, -t on j; each node's arm reaches to the facet's centroid.
       const Vec3& centroid = lattice.bond_facet_centroid[b];
@@ -80,7 +82,8 @@ std::vector<double> stresses(const Model& model, const Vector& displacement, boo
   const Lattice& lattice = model.lattice;
   const bool supports = !lattice.face_pieces.empty();
   std::vector<Vec3> bond_force(supports ? lattice.node_count() : 0, Vec3::Zero());
-  std::vector<Mat3> sum = bond_dyads(model, displacement, supports ? &bond_force : nullptr);
+  std::vector<Mat3> sum =
+      bond_dyads(model, displacement, with_loads, supports ? &bond_force : nullptr);
   if (supports) add_support_dyads(model, bond_force, with_loads, sum);
   std::vector<double> voigt(lattice.node_count() * 6);
   const double scale = 1.0 / (2 * lattice.node_volume);
@@ -90,7 +93,15 @@ std::vector<double> stresses(const Model& model, const Vector& displacement, boo
     double* v = &voigt[n * 6];
     v[0] = s(0, 0);
     v[2] = s(2, 2);
-    v[1] = lattice.dim == 2 ? model.node_poisson[n] * (s(0, 0) + s(2, 2)) : s(1, 1);
+    if (lattice.dim == 2) {
+      // Plane strain: sigma_yy = nu (sigma_xx + sigma_zz) for what the lattice added; an
+      // initial isotropic stress sigma0 is there in full, so it adds (1 - 2 nu) sigma0.
+      const double nu = model.node_poisson[n];
+      v[1] = nu * (s(0, 0) + s(2, 2));
+      if (with_loads && model.has_prestress()) v[1] += (1 - 2 * nu) * model.node_initial_stress[n];
+    } else {
+      v[1] = s(1, 1);
+    }
     v[3] = s(1, 2);
     v[4] = s(0, 2);
     v[5] = s(0, 1);

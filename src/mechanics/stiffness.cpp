@@ -62,8 +62,7 @@ void StiffnessMatrix::assemble(const Model& model, const Vector& displacement) {
     const InteractionLaw* law = model.law_of(bond);
     if (state == PairState::open || !law) continue;
     const Bond& pair = lattice.bonds[bond];
-    const Vec3 du = model.node_displacement(displacement, pair.j) -
-                    model.node_displacement(displacement, pair.i);
+    const Vec3 du = model.bond_displacement(displacement, bond);
     const Mat3 tangent = law->tangent(model.springs(bond), state, du);
     add_to_node(pair.i, tangent);
     add_to_node(pair.j, tangent);

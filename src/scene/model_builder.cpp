@@ -1,6 +1,7 @@
 // Builds the mechanical model of a scene: lattice, springs, strengths, supports, gravity.
 #include "latfrac/scene/model_builder.h"
 
+#include <algorithm>
 #include <optional>
 #include <random>
 
@@ -60,6 +61,38 @@ void assign_strengths(const Scene& scene, const FailureCriterion* criterion, Mod
     model.bond_sigma0[b] = scale * sigma0;
     model.bond_tau0[b] = scale * tau0;
   }
+}
+
+// The lithostatic stress at height z, Pa (compression negative): -g times the integral of
+// the density from z to the lattice's top, over the layers each height lies in.
+double lithostatic_stress(const Scene& scene, double g, double top, double z) {
+  std::vector<double> cuts{z, top};
+  for (const Layer& layer : scene.layers)
+    for (double c : {layer.z_min, layer.z_max})
+      if (c > z && c < top) cuts.push_back(c);
+  std::sort(cuts.begin(), cuts.end());
+  double weight = 0;  // Pa per (m/s^2)
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
+    weight += material_at(scene, 0.5 * (cuts[k] + cuts[k + 1])).density * (cuts[k + 1] - cuts[k]);
+  return -g * weight;
+}
+
+// The initial lithostatic stress (docs/model.md, "Initial stress"): bond b carries the
+// force sigma0(c_b) A_b n0 of its Voronoi facet (area A_b, centroid c_b) at zero
+// displacement, a prestretch delta_b = -sigma0(c_b) A_b / kn. Summed over a node's facets
+// these forces are the divergence of sigma0 over its cell, rho g V upwards: its weight.
+void set_lithostatic_prestress(const Scene& scene, Model& model) {
+  const Lattice& lattice = model.lattice;
+  const double g = scene.gravity->g;
+  const double top = lattice.extent.z();
+  model.prestretch.resize(lattice.bond_count());
+  for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
+    const double sigma0 = lithostatic_stress(scene, g, top, lattice.bond_facet_centroid[b].z());
+    model.prestretch[b] = -sigma0 * lattice.bond_facet_area[b] / model.normal_stiffness[b];
+  }
+  model.node_initial_stress.resize(lattice.node_count());
+  for (std::int64_t n = 0; n < lattice.node_count(); ++n)
+    model.node_initial_stress[n] = lithostatic_stress(scene, g, top, lattice.positions[n].z());
 }
 
 }  // namespace
@@ -128,6 +161,12 @@ Model build_model(const Scene& scene, const FailureCriterion* criterion) {
       model.external_force[n * dim + z_component] =
           -material.density * scene.gravity->g * lattice.volume_of(n);
     }
+  }
+  if (scene.gravity && scene.gravity->lithostatic) {
+    if (!lattice.is_random() || scene.large_kinematics)
+      throw InputError(
+          "gravity.initial_stress = \"lithostatic\" needs a random lattice and small kinematics");
+    set_lithostatic_prestress(scene, model);
   }
   std::unique_ptr<BondLaw> bond_law;
   if (scene.large_kinematics) {

@@ -40,12 +40,30 @@ void EquilibriumSolver::update_loads() {
   const Vector at1 = model_.internal_force(model_.full_displacement(zero, 1.0), loaded);
   load0_ = model_.free_part(model_.external_force - at0);
   load1_ = model_.free_part(at0 - at1);
+  if (model_.has_prestress()) {
+    // Every other pair that carries force carries its prestress at zero displacement, the
+    // same at every lambda (no prescribed dof): a load like gravity, which changes when
+    // the pair breaks, opens or closes.
+    std::vector<std::int64_t> prestressed;
+    for (std::int64_t b = 0; b < model_.lattice.bond_count(); ++b) {
+      if (on_boundary_[b] || model_.state(b) == PairState::open || !model_.law_of(b)) continue;
+      if (model_.has_friction() && model_.contact_capable(b) &&
+          model_.law_of(b)->anchored(model_.state(b)))
+        continue;  // in `loaded` already
+      prestressed.push_back(b);
+    }
+    load0_ -= model_.free_part(model_.internal_force(model_.full_displacement(zero, 0.0), prestressed));
+  }
   loads_current_ = true;
 }
 
+// A prestressed body's weight and prestress balance (their sum is zero to rounding at
+// lambda = 0), so its scale is the larger of the sum and the weight alone.
 double EquilibriumSolver::load_scale(double lambda) {
   update_loads();
-  return max_abs(load0_ + lambda * load1_);
+  const double net = max_abs(load0_ + lambda * load1_);
+  if (!model_.has_prestress()) return net;
+  return std::max(net, max_abs(model_.free_part(model_.external_force)));
 }
 
 void EquilibriumSolver::refactorize(const Vector& free_displacement, double lambda) {
@@ -328,9 +346,10 @@ void EquilibriumSolver::append_on_bond(std::int64_t bond, const Vec3& v,
 // contact spring).
 void EquilibriumSolver::set_pair_state(std::int64_t bond, PairState state) {
   if (model_.state(bond) == state) return;
-  // A frictional contact's anchor and slip force are not in the rank-1 terms that the
-  // correction re-solve follows: the next solve is a full one, with fresh loads.
-  if (model_.has_friction() && model_.can_touch(bond)) {
+  // A frictional contact's anchor and slip force, and a prestressed pair's force at rest,
+  // are not in the rank-1 terms that the correction re-solve follows: the next solve is
+  // a full one, with fresh loads.
+  if ((model_.has_friction() && model_.can_touch(bond)) || model_.has_prestress()) {
     last_solution_valid_ = false;
     loads_current_ = false;
   }

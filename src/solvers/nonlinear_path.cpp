@@ -59,7 +59,7 @@ Vector directional_derivative(const Model& model, const Vector& displacement,
   for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
     const InteractionLaw* law = model.law_of(b);
     if (model.state(b) == PairState::open || !law) continue;
-    const Vec3 relative_direction = model.bond_displacement(direction, b);
+    const Vec3 relative_direction = model.relative_motion(direction, b);
     if (relative_direction.isZero(0.0)) continue;
     const Mat3 tangent =
         law->jacobian(model.springs(b), model.state(b), model.bond_displacement(displacement, b));

@@ -32,6 +32,12 @@ class Model {
   std::vector<double> bond_young, bond_shear_modulus, bond_sigma0, bond_tau0;
   std::vector<double> node_poisson;  // per node, for the 2-D out-of-plane stress
   Vector external_force;             // per dof (gravity), N (2-D: N per metre)
+  // An initial stress (docs/model.md, "Initial stress"): per bond, the stretch delta_b (m)
+  // its normal spring already has at zero displacement, so that it carries
+  // t0 = -kn delta_b; per node, the initial stress sigma0 it reads (Pa, isotropic; the
+  // 2-D out-of-plane stress keeps it). Both empty: the lattice starts unstressed.
+  std::vector<double> prestretch;
+  std::vector<double> node_initial_stress;
 
   int dim() const { return lattice.dim; }
   const DofMap& dofs() const { return dofs_; }
@@ -72,6 +78,7 @@ class Model {
     return {lattice.bond_direction[bond], lattice.bond_length[bond], normal_stiffness[bond],
             shear_stiffness[bond], memory_.empty() ? nullptr : &memory_[bond]};
   }
+  bool has_prestress() const { return !prestretch.empty(); }
   // True when every law is linear (paths between events are affine).
   bool is_linear() const { return bond_law_->is_linear(); }
 
@@ -89,8 +96,16 @@ class Model {
   Vector reactions(const Vector& displacement) const;
   // The displacement of node n as a 3-vector (y = 0 in 2-D).
   Vec3 node_displacement(const Vector& displacement, std::int64_t node) const;
-  // Relative displacement u_j - u_i of bond b.
+  // The relative displacement that bond b's law reads: u_j - u_i, less its prestretch
+  // delta_b n0 when the scene starts stressed (what the pair's springs are stretched by,
+  // measured from their unstressed state).
   Vec3 bond_displacement(const Vector& displacement, std::int64_t bond) const {
+    Vec3 du = relative_motion(displacement, bond);
+    if (!prestretch.empty()) du -= prestretch[bond] * lattice.bond_direction[bond];
+    return du;
+  }
+  // u_j - u_i alone: for a rate or a direction (an affine path's slope, a Newton step).
+  Vec3 relative_motion(const Vector& displacement, std::int64_t bond) const {
     return node_displacement(displacement, lattice.bonds[bond].j) -
            node_displacement(displacement, lattice.bonds[bond].i);
   }

@@ -29,6 +29,11 @@ namespace latfrac {
 
 struct Gravity {
   double g = 9.81;  // m/s^2
+  // How the body starts (docs/model.md, "Initial stress"): false, unstressed, so that
+  // gravity loads it elastically (sigma_xx = nu / (1 - nu) sigma_zz); true, in the
+  // lithostatic state sigma0 = -g (integral of rho from z to the top) I, its bonds
+  // pre-stressed so that it stands under its weight without moving (random lattices).
+  bool lithostatic = false;
 };
 
 struct Loading {

@@ -1,0 +1,196 @@
+// The initial lithostatic stress (gravity.initial_stress = "lithostatic", docs/model.md,
+// "Initial stress"): a random lattice whose bonds carry their facets' share of
+// sigma0 = -rho g depth I stands under its weight without moving, its walls carry the
+// lithostatic thrust, its response to extension is the unstressed body's (linearity), and
+// a broken bond under compression stays a pre-compressed contact.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "hard_case_checks.h"
+#include "latfrac/fracture/event_source.h"
+#include "latfrac/mechanics/node_stress.h"
+#include "latfrac/solvers/equilibrium.h"
+#include "scenes.h"
+
+using namespace latfrac;
+using namespace latfrac::testing;
+
+namespace {
+
+Scene lithostatic_box(int dim, bool lithostatic) {
+  Scene scene = dim == 2 ? box_scene(2, 500.0, {12e3, 0, 6e3}, true)
+                         : box_scene(3, 1000.0, {8e3, 5e3, 5e3}, true);
+  scene.lattice.kind = LatticeKind::random;
+  scene.lattice.seed = 11;
+  scene.gravity->lithostatic = lithostatic;
+  return scene;
+}
+
+}  // namespace
+
+TEST_CASE("Lithostatic start: the body stands still, and its walls carry rho g H^2 / 2",
+          "[initial_stress][random]") {
+  const int dim = GENERATE(2, 3);
+  const Scene elastic_scene = lithostatic_box(dim, false);
+  const Scene scene = lithostatic_box(dim, true);
+  Model elastic = build_model(elastic_scene);
+  Model model = build_model(scene);
+  REQUIRE(model.has_prestress());
+  EquilibriumSolver elastic_solver(elastic, elastic_scene.solver);
+  EquilibriumSolver solver(model, scene.solver);
+  const Vector u_elastic = elastic.full_displacement(elastic_solver.affine_path().at(0.0), 0.0);
+  const Vector u = model.full_displacement(solver.affine_path().at(0.0), 0.0);
+  // The facets' forces sum to the divergence of sigma0 over each cell (the divergence
+  // theorem, exact for a linear field on a polygon or polyhedron): rho g V upwards, the
+  // node's weight. Nothing moves, up to rounding.
+  INFO(dim << "-D: largest displacement " << max_abs(u) << " m, unstressed start "
+           << max_abs(u_elastic) << " m");
+  CHECK(max_abs(u) < 1e-9 * max_abs(u_elastic));
+  // The supports: the base carries the weight, each wall the lithostatic thrust
+  // rho g H^2 / 2 per unit width (K = 1), where the unstressed start gives nu / (1 - nu)
+  // of it.
+  const Lattice& lattice = model.lattice;
+  const double rho_g = scene.material.density * scene.gravity->g, nu = scene.material.poisson;
+  const double height = lattice.extent.z(), width = dim == 3 ? lattice.extent.y() : 1.0;
+  const double volume = lattice.extent.x() * height * width;
+  for (const bool prestressed : {false, true}) {
+    const Model& m = prestressed ? model : elastic;
+    const Vector reactions = m.reactions(prestressed ? u : u_elastic);
+    double base = 0, wall = 0;
+    for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
+      if (lattice.on_face(n, Face::z_min)) base += reactions[n * dim + dim - 1];
+      if (lattice.on_face(n, Face::x_min)) wall += reactions[n * dim];
+    }
+    INFO((prestressed ? "lithostatic" : "unstressed") << " start: base " << base
+                                                      << " N, wall " << wall << " N");
+    CHECK(base == Approx(rho_g * volume).epsilon(1e-9));
+    const double thrust = rho_g * height * height / 2 * width;
+    if (prestressed) {
+      // Each wall piece takes sigma0 at its centroid times its area: the integral of the
+      // linear sigma0 over the wall, exactly.
+      CHECK(wall == Approx(thrust).epsilon(1e-9));
+    } else {
+      // About K0 = nu / (1 - nu) = 0.25 of it for nu = 0.2 (0.22 on this 2-D box, whose
+      // random lattice is a few cells across), far from the lithostatic thrust.
+      CHECK(wall == Approx(nu / (1 - nu) * thrust).epsilon(0.2));
+    }
+  }
+  // In the middle band, the node stress reads the isotropic sigma0 (the scatter of a
+  // random lattice's node stresses is about the cells' centroid offsets times rho g).
+  const std::vector<double> stress = node_stresses(model, u);
+  double xx = 0, zz = 0, expected = 0;
+  for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
+    const Vec3& p = lattice.positions[n];
+    if (p.z() < 0.3 * height || p.z() > 0.7 * height) continue;
+    if (std::abs(p.x() - lattice.extent.x() / 2) > 0.3 * lattice.extent.x()) continue;
+    xx += stress[6 * n];
+    zz += stress[6 * n + 2];
+    expected += model.node_initial_stress[n];
+    CHECK(model.node_initial_stress[n] == Approx(-rho_g * (height - p.z())).epsilon(1e-12));
+  }
+  CHECK(xx / expected == Approx(1).epsilon(0.01));
+  CHECK(zz / expected == Approx(1).epsilon(0.01));
+}
+
+TEST_CASE("Lithostatic start: extension adds to sigma0 what it adds to the unstressed body",
+          "[initial_stress][random]") {
+  // The springs are linear: the prestress is a constant the response to extension does
+  // not see, as long as every bond is intact.
+  const int dim = GENERATE(2, 3);
+  const Scene elastic_scene = lithostatic_box(dim, false);
+  const Scene scene = lithostatic_box(dim, true);
+  Model elastic = build_model(elastic_scene);
+  Model model = build_model(scene);
+  EquilibriumSolver elastic_solver(elastic, elastic_scene.solver);
+  EquilibriumSolver solver(model, scene.solver);
+  const AffinePath elastic_path = elastic_solver.affine_path();
+  const AffinePath path = solver.affine_path();
+  const double lambda = 1e-3;
+  const Vector change_elastic = elastic_path.at(lambda) - elastic_path.at(0.0);
+  const Vector change = path.at(lambda) - path.at(0.0);
+  CHECK(max_abs(change - change_elastic) < 1e-9 * max_abs(change_elastic));
+  const std::vector<double> s1 = node_stresses(model, model.full_displacement(path.at(lambda), lambda));
+  const std::vector<double> s0 = node_stresses(model, model.full_displacement(path.at(0.0), 0.0));
+  const std::vector<double> e1 =
+      node_stresses(elastic, elastic.full_displacement(elastic_path.at(lambda), lambda));
+  const std::vector<double> e0 =
+      node_stresses(elastic, elastic.full_displacement(elastic_path.at(0.0), 0.0));
+  double largest = 0, worst = 0;
+  for (std::size_t k = 0; k < s1.size(); ++k) {
+    largest = std::max(largest, std::abs(e1[k] - e0[k]));
+    worst = std::max(worst, std::abs((s1[k] - s0[k]) - (e1[k] - e0[k])));
+  }
+  INFO("largest stress change " << largest << " Pa, difference " << worst << " Pa");
+  CHECK(worst < 1e-8 * largest);
+  // And the path's slope of the node stresses is the same (what the crossings read).
+  const std::vector<double> rate = node_stress_rates(model, full_path(model, path).per_lambda);
+  const std::vector<double> elastic_rate =
+      node_stress_rates(elastic, full_path(elastic, elastic_path).per_lambda);
+  double rate_scale = 0, rate_worst = 0;
+  for (std::size_t k = 0; k < rate.size(); ++k) {
+    rate_scale = std::max(rate_scale, std::abs(elastic_rate[k]));
+    rate_worst = std::max(rate_worst, std::abs(rate[k] - elastic_rate[k]));
+  }
+  CHECK(rate_worst < 1e-9 * rate_scale);
+}
+
+TEST_CASE("Lithostatic start: a broken bond under compression stays a pre-compressed contact",
+          "[initial_stress][random][contact]") {
+  Scene scene = lithostatic_box(2, true);
+  scene.contact = Contact{};
+  Model model = build_model(scene);
+  const Vector u = Vector::Zero(model.dofs().dof_count());
+  // An interior bond: at rest it carries sigma0(c_b) A_b along n0 (compression).
+  const Lattice& lattice = model.lattice;
+  std::int64_t bond = -1;
+  for (std::int64_t b = 0; b < lattice.bond_count() && bond < 0; ++b)
+    if (lattice.bond_facet_centroid[b].z() < 0.5 * lattice.extent.z()) bond = b;
+  REQUIRE(bond >= 0);
+  const double sigma0 = -scene.material.density * scene.gravity->g *
+                        (lattice.extent.z() - lattice.bond_facet_centroid[bond].z());
+  const Vec3& n0 = lattice.bond_direction[bond];
+  const Vec3 intact = model.bond_tension(u, bond);
+  CHECK(intact.dot(n0) == Approx(sigma0 * lattice.bond_facet_area[bond]).epsilon(1e-12));
+  CHECK((intact - intact.dot(n0) * n0).norm() < 1e-9 * std::abs(intact.dot(n0)));
+  // Broken into a contact, it settles closed (its faces still pressed together) and
+  // carries the same normal force.
+  ModelEditor editor(model);
+  editor.set_state(bond, PairState::open);
+  const PairTarget target = model.contact_law()->settled_state(model.springs(bond), PairState::open,
+                                                               model.bond_displacement(u, bond));
+  CHECK(target.state == PairState::closed);
+  editor.set_state(bond, PairState::closed);
+  CHECK(model.bond_tension(u, bond).dot(n0) == Approx(intact.dot(n0)).epsilon(1e-12));
+  // It opens where its faces have moved apart by the prestretch, -t0 / kn.
+  const double opening = -sigma0 * lattice.bond_facet_area[bond] / model.normal_stiffness[bond];
+  CHECK(model.prestretch[bond] == Approx(opening).epsilon(1e-12));
+  const PairSwitch change = model.contact_law()->next_switch(
+      model.springs(bond), PairState::closed, model.bond_displacement(u, bond), n0, 0.0,
+      10 * opening, false);
+  REQUIRE(change.found());
+  CHECK(change.to == PairState::open);
+  CHECK(change.s == Approx(opening).epsilon(1e-9));
+}
+
+TEST_CASE("Lithostatic start: event-driven runs end in equilibrium, nothing breaks at rest",
+          "[initial_stress][random][hard]") {
+  // Friction 0: the final state is rebuilt from the snapshot alone (final_state.h) and
+  // checked; friction 0.6: the run completes with finite results.
+  const double friction = GENERATE(0.0, 0.6);
+  Scene scene = lithostatic_box(2, true);
+  scene.strength = strength_of(Criterion::elliptic, 5e6, 30.0);
+  scene.strength->tau0_factor = 2;
+  scene.strength->bond_stress = BondStress::tensor;
+  scene.strength->internal_friction = 0.6;
+  scene.contact = Contact{true, friction};
+  scene.loading.total = 2e-3;
+  scene.loading.basal_discontinuity = 6e3;
+  scene.output.snapshots = {2e-3};
+  const RunResult result = run_scene(scene, quiet());
+  INFO("friction " << friction << ": " << result.events.size() << " breaks");
+  REQUIRE(!result.events.empty());
+  CHECK(snapshots_finite(result));
+  // The body starts where it stands: the first break needs some extension.
+  CHECK(result.events.front().lambda > 0);
+  if (friction == 0) check_final_equilibrium(scene, result);
+}
