@@ -2,11 +2,14 @@
 // "Initial stress"): a random lattice whose bonds carry their facets' share of
 // sigma0 = -rho g depth I stands under its weight without moving, its walls carry the
 // lithostatic thrust, its response to extension is the unstressed body's (linearity), and
-// a broken bond under compression stays a pre-compressed contact.
+// a broken bond under compression stays a pre-compressed contact. With stress_ratio K the
+// horizontal stress is K sigma0_v: the same balance, with the bonds sheared by it.
 #include <catch2/catch.hpp>
 #include <cmath>
 
 #include "hard_case_checks.h"
+#include "latfrac/base/error.h"
+#include "latfrac/mechanics/random_calibration.h"
 #include "latfrac/fracture/event_source.h"
 #include "latfrac/mechanics/node_stress.h"
 #include "latfrac/solvers/equilibrium.h"
@@ -17,38 +20,53 @@ using namespace latfrac::testing;
 
 namespace {
 
-Scene lithostatic_box(int dim, bool lithostatic) {
+Scene lithostatic_box(int dim, bool lithostatic, double ratio = 1) {
   Scene scene = dim == 2 ? box_scene(2, 500.0, {12e3, 0, 6e3}, true)
                          : box_scene(3, 1000.0, {8e3, 5e3, 5e3}, true);
   scene.lattice.kind = LatticeKind::random;
   scene.lattice.seed = 11;
   scene.gravity->lithostatic = lithostatic;
+  scene.gravity->stress_ratio = ratio;
   return scene;
 }
 
+// A scene's model and the solver that owns its run.
+struct Started {
+  explicit Started(Scene s) : scene(std::move(s)), model(build_model(scene)), solver(model, scene.solver) {}
+  Scene scene;
+  Model model;
+  EquilibriumSolver solver;
+};
+
+// The same box started unstressed and prestressed (K = ratio).
+struct Starts {
+  Starts(int dim, double ratio) : elastic(lithostatic_box(dim, false)), stressed(lithostatic_box(dim, true, ratio)) {}
+  Started elastic, stressed;
+};
+
 }  // namespace
 
-TEST_CASE("Lithostatic start: the body stands still, and its walls carry rho g H^2 / 2",
+TEST_CASE("Lithostatic start: the body stands still, and its walls carry K rho g H^2 / 2",
           "[initial_stress][random]") {
   const int dim = GENERATE(2, 3);
-  const Scene elastic_scene = lithostatic_box(dim, false);
-  const Scene scene = lithostatic_box(dim, true);
-  Model elastic = build_model(elastic_scene);
-  Model model = build_model(scene);
+  // K = 1, the isotropic lithostatic state; K = 0.4, an Andersonian one (sigma1 vertical).
+  const double ratio = GENERATE(1.0, 0.4);
+  Starts starts(dim, ratio);
+  const Scene& scene = starts.stressed.scene;
+  const Model& elastic = starts.elastic.model;
+  const Model& model = starts.stressed.model;
   REQUIRE(model.has_prestress());
-  EquilibriumSolver elastic_solver(elastic, elastic_scene.solver);
-  EquilibriumSolver solver(model, scene.solver);
-  const Vector u_elastic = elastic.full_displacement(elastic_solver.affine_path().at(0.0), 0.0);
-  const Vector u = model.full_displacement(solver.affine_path().at(0.0), 0.0);
+  const Vector u_elastic = elastic.full_displacement(starts.elastic.solver.affine_path().at(0.0), 0.0);
+  const Vector u = model.full_displacement(starts.stressed.solver.affine_path().at(0.0), 0.0);
   // The facets' forces sum to the divergence of sigma0 over each cell (the divergence
   // theorem, exact for a linear field on a polygon or polyhedron): rho g V upwards, the
-  // node's weight. Nothing moves, up to rounding.
-  INFO(dim << "-D: largest displacement " << max_abs(u) << " m, unstressed start "
-           << max_abs(u_elastic) << " m");
+  // node's weight (the horizontal part K sigma0_v does not vary along x). Nothing moves,
+  // up to rounding.
+  INFO(dim << "-D, K = " << ratio << ": largest displacement " << max_abs(u)
+           << " m, unstressed start " << max_abs(u_elastic) << " m");
   CHECK(max_abs(u) < 1e-9 * max_abs(u_elastic));
-  // The supports: the base carries the weight, each wall the lithostatic thrust
-  // rho g H^2 / 2 per unit width (K = 1), where the unstressed start gives nu / (1 - nu)
-  // of it.
+  // The supports: the base carries the weight, each wall the thrust K rho g H^2 / 2 per
+  // unit width, where the unstressed start gives nu / (1 - nu) of rho g H^2 / 2.
   const Lattice& lattice = model.lattice;
   const double rho_g = scene.material.density * scene.gravity->g, nu = scene.material.poisson;
   const double height = lattice.extent.z(), width = dim == 3 ? lattice.extent.y() : 1.0;
@@ -68,28 +86,33 @@ TEST_CASE("Lithostatic start: the body stands still, and its walls carry rho g H
     if (prestressed) {
       // Each wall piece takes sigma0 at its centroid times its area: the integral of the
       // linear sigma0 over the wall, exactly.
-      CHECK(wall == Approx(thrust).epsilon(1e-9));
+      CHECK(wall == Approx(ratio * thrust).epsilon(1e-9));
     } else {
       // About K0 = nu / (1 - nu) = 0.25 of it for nu = 0.2 (0.22 on this 2-D box, whose
       // random lattice is a few cells across), far from the lithostatic thrust.
       CHECK(wall == Approx(nu / (1 - nu) * thrust).epsilon(0.2));
     }
   }
-  // In the middle band, the node stress reads the isotropic sigma0 (the scatter of a
-  // random lattice's node stresses is about the cells' centroid offsets times rho g).
+  // In the middle band, the node stress reads sigma0 = sigma0_v diag(K, K, 1) (the scatter
+  // of a random lattice's node stresses is about the cells' centroid offsets times rho g);
+  // the 2-D out-of-plane sigma_yy is K sigma0_v too.
   const std::vector<double> stress = node_stresses(model, u);
-  double xx = 0, zz = 0, expected = 0;
+  double xx = 0, yy = 0, zz = 0, xz = 0, expected = 0;
   for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
     const Vec3& p = lattice.positions[n];
     if (p.z() < 0.3 * height || p.z() > 0.7 * height) continue;
     if (std::abs(p.x() - lattice.extent.x() / 2) > 0.3 * lattice.extent.x()) continue;
     xx += stress[6 * n];
+    yy += stress[6 * n + 1];
     zz += stress[6 * n + 2];
+    xz += stress[6 * n + 4];
     expected += model.node_initial_stress[n];
     CHECK(model.node_initial_stress[n] == Approx(-rho_g * (height - p.z())).epsilon(1e-12));
   }
-  CHECK(xx / expected == Approx(1).epsilon(0.01));
+  CHECK(xx / expected == Approx(ratio).epsilon(0.01));
+  CHECK(yy / expected == Approx(ratio).epsilon(0.01));
   CHECK(zz / expected == Approx(1).epsilon(0.01));
+  CHECK(std::abs(xz / expected) < 0.01);
 }
 
 TEST_CASE("Lithostatic start: extension adds to sigma0 what it adds to the unstressed body",
@@ -97,14 +120,12 @@ TEST_CASE("Lithostatic start: extension adds to sigma0 what it adds to the unstr
   // The springs are linear: the prestress is a constant the response to extension does
   // not see, as long as every bond is intact.
   const int dim = GENERATE(2, 3);
-  const Scene elastic_scene = lithostatic_box(dim, false);
-  const Scene scene = lithostatic_box(dim, true);
-  Model elastic = build_model(elastic_scene);
-  Model model = build_model(scene);
-  EquilibriumSolver elastic_solver(elastic, elastic_scene.solver);
-  EquilibriumSolver solver(model, scene.solver);
-  const AffinePath elastic_path = elastic_solver.affine_path();
-  const AffinePath path = solver.affine_path();
+  const double ratio = GENERATE(1.0, 0.4);
+  Starts starts(dim, ratio);
+  const Model& elastic = starts.elastic.model;
+  const Model& model = starts.stressed.model;
+  const AffinePath elastic_path = starts.elastic.solver.affine_path();
+  const AffinePath path = starts.stressed.solver.affine_path();
   const double lambda = 1e-3;
   const Vector change_elastic = elastic_path.at(lambda) - elastic_path.at(0.0);
   const Vector change = path.at(lambda) - path.at(0.0);
@@ -132,6 +153,56 @@ TEST_CASE("Lithostatic start: extension adds to sigma0 what it adds to the unstr
     rate_worst = std::max(rate_worst, std::abs(rate[k] - elastic_rate[k]));
   }
   CHECK(rate_worst < 1e-9 * rate_scale);
+}
+
+TEST_CASE("Lithostatic start with K: each bond carries its facet's traction sigma0 n0 A",
+          "[initial_stress][random]") {
+  // sigma0 = sigma0_v diag(K, K, 1) is not isotropic: a facet inclined to the axes gets a
+  // traction with a part along the facet, which the bond's shear spring carries.
+  const int dim = GENERATE(2, 3);
+  const double ratio = 0.4;
+  const Scene scene = lithostatic_box(dim, true, ratio);
+  const Model model = build_model(scene);
+  const Lattice& lattice = model.lattice;
+  const Vector u = Vector::Zero(model.dofs().dof_count());
+  const double rho_g = scene.material.density * scene.gravity->g;
+  double worst = 0, largest_shear = 0;
+  for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
+    const double vertical = -rho_g * (lattice.extent.z() - lattice.bond_facet_centroid[b].z());
+    const Vec3& n = lattice.bond_direction[b];
+    const double area = lattice.bond_facet_area[b];
+    const Vec3 traction = area * vertical * Vec3(ratio * n.x(), ratio * n.y(), n.z());
+    const Vec3 t = model.bond_tension(u, b);
+    worst = std::max(worst, (t - traction).norm() / std::max(traction.norm(), 1.0));
+    largest_shear = std::max(largest_shear, (t - t.dot(n) * n).norm() / std::max(std::abs(t.dot(n)), 1.0));
+  }
+  INFO(dim << "-D: largest relative difference " << worst << ", largest shear / normal " << largest_shear);
+  CHECK(worst < 1e-12);
+  // (1 - K) / 2 over (1 + K) / 2 at 45 degrees: bonds are sheared by about 0.43 of their
+  // normal force.
+  CHECK(largest_shear > 0.4);
+}
+
+TEST_CASE("Lithostatic start with K: bonds without shear springs are refused unless K = 1",
+          "[initial_stress][random]") {
+  // A random lattice at its largest nu has ks = 0 (docs/model.md, section 2): its bonds
+  // carry the isotropic state along n0, but not the shear part of an anisotropic one.
+  const int dim = GENERATE(2, 3);
+  Scene scene = lithostatic_box(dim, true, 0.4);
+  scene.material.poisson = random_lattice_max_poisson(dim);
+  CHECK_THROWS_AS(build_model(scene), InputError);
+  scene.gravity->stress_ratio = 1;
+  const Model model = build_model(scene);
+  const Vector u = Vector::Zero(model.dofs().dof_count());
+  REQUIRE(model.shear_stiffness[0] == 0);
+  double worst = 0;
+  for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
+    const Vec3& n = model.lattice.bond_direction[b];
+    const Vec3 t = model.bond_tension(u, b);
+    worst = std::max(worst, (t - t.dot(n) * n).norm() / std::max(std::abs(t.dot(n)), 1.0));
+  }
+  INFO(dim << "-D: largest shear / normal at rest " << worst);
+  CHECK(worst < 1e-12);
 }
 
 TEST_CASE("Lithostatic start: a broken bond under compression stays a pre-compressed contact",
@@ -163,7 +234,7 @@ TEST_CASE("Lithostatic start: a broken bond under compression stays a pre-compre
   CHECK(model.bond_tension(u, bond).dot(n0) == Approx(intact.dot(n0)).epsilon(1e-12));
   // It opens where its faces have moved apart by the prestretch, -t0 / kn.
   const double opening = -sigma0 * lattice.bond_facet_area[bond] / model.normal_stiffness[bond];
-  CHECK(model.prestretch[bond] == Approx(opening).epsilon(1e-12));
+  CHECK(model.prestretch[bond].dot(n0) == Approx(opening).epsilon(1e-12));
   const PairSwitch change = model.contact_law()->next_switch(
       model.springs(bond), PairState::closed, model.bond_displacement(u, bond), n0, 0.0,
       10 * opening, false);

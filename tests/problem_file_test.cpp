@@ -483,6 +483,16 @@ TEST_CASE("[gravity] initial_stress: lithostatic on random lattices with small k
              Contains("large_kinematics.enabled: large kinematics with gravity.initial_stress"));
   CHECK_THAT(error_of(random + "[gravity]\ninitial_stress = \"k0\"\n"),
              Contains("gravity.initial_stress"));
+  // stress_ratio K: 1 unless given, read with the lithostatic start, refused without it.
+  CHECK(parse_problem(random + "[gravity]\ninitial_stress = \"lithostatic\"\n", "t.toml")
+            .gravity->stress_ratio == 1);
+  CHECK(parse_problem(random + "[gravity]\ninitial_stress = \"lithostatic\"\nstress_ratio = 0.4\n",
+                      "t.toml")
+            .gravity->stress_ratio == 0.4);
+  CHECK_THAT(error_of(random + "[gravity]\nstress_ratio = 0.4\n"),
+             Contains("gravity.stress_ratio: has no effect"));
+  CHECK_THAT(error_of(random + "[gravity]\ninitial_stress = \"lithostatic\"\nstress_ratio = -1\n"),
+             Contains("gravity.stress_ratio"));
 }
 
 TEST_CASE("every scene says which of the two models it runs", "[io]") {

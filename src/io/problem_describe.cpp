@@ -146,6 +146,8 @@ std::string describe(const Scene& scene) {
     out.section("gravity");
     out.entry("g", scene.gravity->g, "m/s^2");
     out.entry("initial_stress", std::string(scene.gravity->lithostatic ? "lithostatic" : "elastic"));
+    if (scene.gravity->lithostatic)
+      out.entry("stress_ratio", scene.gravity->stress_ratio, "(sigma0_h / sigma0_v)");
   } else {
     out.off("gravity");
   }

@@ -251,7 +251,7 @@ std::vector<Layer> read_layers(const Section& top, const Scene& scene) {
 }
 
 void read_effects(const Section& top, Scene& scene) {
-  if (const auto s = top.section("gravity", {"g", "initial_stress"})) {
+  if (const auto s = top.section("gravity", {"g", "initial_stress", "stress_ratio"})) {
     scene.gravity = Gravity{s->number("g", non_negative("m/s^2"), 9.81)};
     scene.gravity->lithostatic = s->choice("initial_stress", {"elastic", "lithostatic"}).value_or(0) == 1;
     if (scene.gravity->lithostatic && scene.lattice.kind != LatticeKind::random) {
@@ -260,6 +260,14 @@ void read_effects(const Section& top, Scene& scene) {
                   lattice_kind_name(scene.lattice.dim, scene.lattice.kind) +
                   " lattice (a bond's prestress is its Voronoi facet's share of the stress)",
               "allowed: \"lithostatic\" with lattice.kind = \"random\", or \"elastic\"");
+    }
+    if (const auto ratio = s->number("stress_ratio", non_negative())) {
+      if (!scene.gravity->lithostatic)
+        s->fail("stress_ratio",
+                "has no effect: the elastic start's horizontal stress is gravity's "
+                "nu / (1 - nu) sigma_zz",
+                "allowed: gravity.initial_stress = \"lithostatic\", or remove stress_ratio");
+      scene.gravity->stress_ratio = *ratio;
     }
   }
   if (const auto s = top.section("contact", {"enabled", "friction", "friction_facets"})) {

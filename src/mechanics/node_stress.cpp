@@ -95,10 +95,14 @@ std::vector<double> stresses(const Model& model, const Vector& displacement, boo
     v[2] = s(2, 2);
     if (lattice.dim == 2) {
       // Plane strain: sigma_yy = nu (sigma_xx + sigma_zz) for what the lattice added; an
-      // initial isotropic stress sigma0 is there in full, so it adds (1 - 2 nu) sigma0.
+      // initial stress sigma0_v diag(K, K, 1) has its sigma_yy = K sigma0_v in full, so it
+      // adds (K - nu (1 + K)) sigma0_v (K = 1: (1 - 2 nu) sigma0).
       const double nu = model.node_poisson[n];
       v[1] = nu * (s(0, 0) + s(2, 2));
-      if (with_loads && model.has_prestress()) v[1] += (1 - 2 * nu) * model.node_initial_stress[n];
+      if (with_loads && model.has_prestress()) {
+        const double k = model.initial_stress_ratio;
+        v[1] += (k - nu * (1 + k)) * model.node_initial_stress[n];
+      }
     } else {
       v[1] = s(1, 1);
     }

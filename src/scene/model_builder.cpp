@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <optional>
 #include <random>
+#include <string>
 
 #include "latfrac/base/error.h"
 #include "latfrac/criteria/criterion.h"
@@ -77,19 +78,39 @@ double lithostatic_stress(const Scene& scene, double g, double top, double z) {
   return -g * weight;
 }
 
-// The initial lithostatic stress (docs/model.md, "Initial stress"): bond b carries the
-// force sigma0(c_b) A_b n0 of its Voronoi facet (area A_b, centroid c_b) at zero
-// displacement, a prestretch delta_b = -sigma0(c_b) A_b / kn. Summed over a node's facets
-// these forces are the divergence of sigma0 over its cell, rho g V upwards: its weight.
+// The initial stress (docs/model.md, "Initial stress"): sigma0 = sigma0_v(z) diag(K, K, 1)
+// (2-D: diag(K, 1) in x-z), sigma0_v the lithostatic stress. Bond b carries its Voronoi
+// facet's traction t0 = sigma0(c_b) n0 A_b (area A_b, centroid c_b, normal n0) at zero
+// displacement: its springs are already displaced by d_b = -(t0.n0 / kn) n0 - t0_s / ks,
+// t0_s the traction's part across n0. Summed over a node's facets these forces are the
+// divergence of sigma0 over its cell (sigma0 is linear in z there), rho g V upwards: its
+// weight; sigma0's horizontal part does not vary along x and adds nothing.
 void set_lithostatic_prestress(const Scene& scene, Model& model) {
   const Lattice& lattice = model.lattice;
   const double g = scene.gravity->g;
+  const double ratio = scene.gravity->stress_ratio;
   const double top = lattice.extent.z();
   model.prestretch.resize(lattice.bond_count());
   for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
-    const double sigma0 = lithostatic_stress(scene, g, top, lattice.bond_facet_centroid[b].z());
-    model.prestretch[b] = -sigma0 * lattice.bond_facet_area[b] / model.normal_stiffness[b];
+    const double vertical = lithostatic_stress(scene, g, top, lattice.bond_facet_centroid[b].z());
+    const Vec3& n = lattice.bond_direction[b];
+    const double area = lattice.bond_facet_area[b];
+    const Vec3 traction{ratio * vertical * n.x() * area, ratio * vertical * n.y() * area,
+                        vertical * n.z() * area};
+    const double normal = traction.dot(n);
+    // K = 1: the traction is along n0 exactly (no rounding shear on bonds without ks).
+    const Vec3 shear = ratio == 1 ? Vec3(Vec3::Zero()) : Vec3(traction - normal * n);
+    Vec3 d = -(normal / model.normal_stiffness[b]) * n;
+    if (shear.norm() > 0) {
+      if (!(model.shear_stiffness[b] > 0))
+        throw InputError(
+            "gravity.stress_ratio != 1 needs shear springs (bond " + std::to_string(b) +
+            " has ks = 0): an anisotropic initial stress shears the bonds");
+      d -= shear / model.shear_stiffness[b];
+    }
+    model.prestretch[b] = d;
   }
+  model.initial_stress_ratio = ratio;
   model.node_initial_stress.resize(lattice.node_count());
   for (std::int64_t n = 0; n < lattice.node_count(); ++n)
     model.node_initial_stress[n] = lithostatic_stress(scene, g, top, lattice.positions[n].z());

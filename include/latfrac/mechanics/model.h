@@ -32,12 +32,15 @@ class Model {
   std::vector<double> bond_young, bond_shear_modulus, bond_sigma0, bond_tau0;
   std::vector<double> node_poisson;  // per node, for the 2-D out-of-plane stress
   Vector external_force;             // per dof (gravity), N (2-D: N per metre)
-  // An initial stress (docs/model.md, "Initial stress"): per bond, the stretch delta_b (m)
-  // its normal spring already has at zero displacement, so that it carries
-  // t0 = -kn delta_b; per node, the initial stress sigma0 it reads (Pa, isotropic; the
-  // 2-D out-of-plane stress keeps it). Both empty: the lattice starts unstressed.
-  std::vector<double> prestretch;
+  // An initial stress (docs/model.md, "Initial stress"): per bond, the relative
+  // displacement d_b (m) its springs already have at zero displacement, so that it carries
+  // its facet's traction t0 = sigma0 n0 A (normal part -kn d_b.n0, shear part -ks times
+  // d_b's transverse part); per node, the initial vertical stress sigma0_v it reads (Pa)
+  // and, for all nodes, K = sigma0_h / sigma0_v (the 2-D out-of-plane stress keeps
+  // K sigma0_v). Both vectors empty: the lattice starts unstressed.
+  std::vector<Vec3> prestretch;
   std::vector<double> node_initial_stress;
+  double initial_stress_ratio = 1;
 
   int dim() const { return lattice.dim; }
   const DofMap& dofs() const { return dofs_; }
@@ -97,11 +100,11 @@ class Model {
   // The displacement of node n as a 3-vector (y = 0 in 2-D).
   Vec3 node_displacement(const Vector& displacement, std::int64_t node) const;
   // The relative displacement that bond b's law reads: u_j - u_i, less its prestretch
-  // delta_b n0 when the scene starts stressed (what the pair's springs are stretched by,
-  // measured from their unstressed state).
+  // d_b when the scene starts stressed (what the pair's springs are stretched by, measured
+  // from their unstressed state).
   Vec3 bond_displacement(const Vector& displacement, std::int64_t bond) const {
     Vec3 du = relative_motion(displacement, bond);
-    if (!prestretch.empty()) du -= prestretch[bond] * lattice.bond_direction[bond];
+    if (!prestretch.empty()) du -= prestretch[bond];
     return du;
   }
   // u_j - u_i alone: for a rate or a direction (an affine path's slope, a Newton step).

@@ -34,6 +34,9 @@ struct Gravity {
   // lithostatic state sigma0 = -g (integral of rho from z to the top) I, its bonds
   // pre-stressed so that it stands under its weight without moving (random lattices).
   bool lithostatic = false;
+  // With `lithostatic`: K, the initial horizontal stress over the vertical (1: isotropic;
+  // below 1 an Andersonian state with sigma1 vertical, docs/model.md, "Initial stress").
+  double stress_ratio = 1;
 };
 
 struct Loading {
