@@ -100,6 +100,44 @@ TEST_CASE("stress-based crossings agree with sampling on random affine paths", "
   }
 }
 
+TEST_CASE("where index() grows with stress, f on an affine path stays below its ends' bound",
+          "[crossing]") {
+  // The crossing search skips a bond when index(the larger sigma_n of the ends, the larger
+  // |tau| of the ends) < 1 (FailureCriterion::index_grows_with_stress). Sampled f along
+  // random paths, with and without internal friction, never exceeds that bound.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-1, 1), positive(0, 1);
+  const double sigma0 = 50 * MPa, tau0 = 40 * MPa;
+  int claimed = 0;
+  for (Criterion criterion : {Criterion::tensile_or_shear, Criterion::elliptic}) {
+    for (double mu : {0.0, 0.6}) {
+      const auto object = criterion_object(criterion, 2, mu);
+      if (!object->index_grows_with_stress()) continue;
+      ++claimed;
+      double worst = 0;
+      for (int trial = 0; trial < 500; ++trial) {
+        AffineBondStress s;
+        s.normal0 = 2 * sigma0 * unit(rng);
+        s.normal1 = 4 * sigma0 * unit(rng);
+        s.shear0 = tau0 * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+        s.shear1 = 2 * tau0 * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+        const double from = unit(rng), to = from + 2 * positive(rng);
+        const auto normal = [&](double l) { return s.normal0 + l * s.normal1; };
+        const auto shear = [&](double l) { return (s.shear0 + l * s.shear1).norm(); };
+        const double bound = object->index(std::max(normal(from), normal(to)),
+                                           std::max(shear(from), shear(to)), {sigma0, tau0}).value;
+        for (int k = 0; k <= 64; ++k) {
+          const double l = from + (to - from) * k / 64;
+          worst = std::max(worst, object->index(normal(l), shear(l), {sigma0, tau0}).value / bound);
+        }
+      }
+      INFO("criterion " << static_cast<int>(criterion) << ", mu " << mu << ": largest f / bound " << worst);
+      CHECK(worst <= 1 + 1e-12);
+    }
+  }
+  CHECK(claimed == 4);
+}
+
 TEST_CASE("Drucker-Prager crossings agree with sampling on random affine paths", "[crossing]") {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> unit(-1, 1), positive(0, 1);

@@ -64,6 +64,10 @@ class Elliptic final : public FailureCriterion {
         from, elliptic_crossing(start, strength.sigma0, strength.tau0, mu(), to - from), to);
   }
 
+  // <sigma_n>+ and tau raise f, and the strength tau0 + mu_i <-sigma_n>+ falls as sigma_n
+  // grows.
+  bool index_grows_with_stress() const override { return true; }
+
   double rank(double normal_ratio, double shear_ratio_squared) const override {
     return normal_ratio * normal_ratio + shear_ratio_squared;
   }

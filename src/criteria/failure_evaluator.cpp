@@ -2,6 +2,8 @@
 #include "latfrac/criteria/failure_evaluator.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "latfrac/mechanics/node_stress.h"
 
@@ -144,18 +146,37 @@ PathStresses FailureEvaluator::path_stresses(const Model& model, const Vector& a
   PathStresses path{at_zero, sign * per_lambda, {}, {}};
   if (uses_tensor_) {
     // On an affine path the law is linear, and so is the virial in the displacement.
-    path.stress_at_zero = node_stresses(model, at_zero);
-    path.stress_per_unit = node_stress_rates(model, path.per_unit);
+    NodeStressPath stresses = node_stress_path(model, at_zero, path.per_unit);
+    path.stress_at_zero = std::move(stresses.at_zero);
+    path.stress_per_unit = std::move(stresses.per_unit);
   }
   return path;
 }
 
+namespace {
+
+// Whether f can reach 1 on [from, until] when index() grows with sigma_n and tau: it is
+// at most index(the larger sigma_n at the ends, the larger |tau| at the ends). The margin
+// keeps a bond whose f at `from` rounds differently here than in the crossing search.
+bool may_reach_one(const FailureCriterion& criterion, const AffineBondStress& s,
+                   const BondStrength& strength, double from, double until) {
+  if (!criterion.index_grows_with_stress() || !std::isfinite(until)) return true;
+  const double normal = std::max(s.normal0 + from * s.normal1, s.normal0 + until * s.normal1);
+  const double shear =
+      std::max((s.shear0 + from * s.shear1).norm(), (s.shear0 + until * s.shear1).norm());
+  return criterion.index(normal, shear, strength).value >= 1 - 1e-9;
+}
+
+}  // namespace
+
 // Along the path every bond quantity is affine in s: the stress tensor, its resolution on
-// the bond direction (linear in the tensor), and the strains.
+// the bond direction (linear in the tensor), and the strains. A bond whose f cannot reach
+// 1 before `needed_until` (nor before `to`) is skipped: its crossing, if any, is later.
 double FailureEvaluator::first_crossing(const Model& model, std::int64_t b,
                                         const PathStresses& path, double from, double to,
                                         double needed_until) const {
   const BondStrength strength = strength_of(model, b);
+  const double until = std::min(to, needed_until);
   if (reading_ != Reading::strain) {
     const Bond& bond = model.lattice.bonds[b];
     const VoigtStress s0 = bond_stress_tensor(path.stress_at_zero, bond);
@@ -166,6 +187,8 @@ double FailureEvaluator::first_crossing(const Model& model, std::int64_t b,
     const ResolvedStress r0 = resolve_on(s0, n0);
     const ResolvedStress r1 = resolve_on(s1, n0);
     const AffineBondStress affine{r0.normal, r1.normal, r0.shear, r1.shear};
+    if (!may_reach_one(*criterion_, affine, strength, from, until))
+      return std::numeric_limits<double>::infinity();
     return criterion_->first_crossing(affine, strength, from, to);
   }
   const Vec3& n0 = model.lattice.bond_direction[b];
@@ -178,6 +201,8 @@ double FailureEvaluator::first_crossing(const Model& model, std::int64_t b,
   affine.normal1 = e * n0.dot(du1);
   affine.shear0 = g * (du0 - n0.dot(du0) * n0);
   affine.shear1 = g * (du1 - n0.dot(du1) * n0);
+  if (!may_reach_one(*criterion_, affine, strength, from, until))
+    return std::numeric_limits<double>::infinity();
   return criterion_->first_crossing(affine, strength, from, to);
 }
 

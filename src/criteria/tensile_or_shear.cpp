@@ -51,6 +51,10 @@ class TensileOrShear final : public FailureCriterion {
   }
 
   // The larger squared ratio (the shear ratio with the strength the evaluator gives it).
+  // <sigma_n>+ and tau raise f, and the strength tau0 + mu_i <-sigma_n>+ falls as sigma_n
+  // grows.
+  bool index_grows_with_stress() const override { return true; }
+
   double rank(double normal_ratio, double shear_ratio_squared) const override {
     return std::max(normal_ratio * normal_ratio, shear_ratio_squared);
   }

@@ -27,11 +27,6 @@ Vector Model::free_part(const Vector& full) const {
   return part;
 }
 
-Vec3 Model::node_displacement(const Vector& displacement, std::int64_t node) const {
-  if (lattice.dim == 2) return {displacement[2 * node], 0.0, displacement[2 * node + 1]};
-  return {displacement[3 * node], displacement[3 * node + 1], displacement[3 * node + 2]};
-}
-
 Vec3 Model::bond_tension(const Vector& displacement, std::int64_t b) const {
   const InteractionLaw* law = law_of(b);
   if (!law) return Vec3::Zero();

@@ -2,6 +2,8 @@
 // random ones.
 #include "latfrac/mechanics/node_stress.h"
 
+#include "latfrac/mechanics/bond_law.h"
+
 namespace latfrac {
 namespace {
 
@@ -45,46 +47,62 @@ void add_support_dyads(const Model& model, const std::vector<Vec3>& bond_force,
   }
 }
 
-// Per node, the sum over its intact bonds of arm (x) force. In 2-D only the x-z block is
-// summed: the y row and column stay zero, and the sweep runs after every event. With
-// `bond_force`, also each node's force from its intact bonds (random lattices). A rate
-// (`state` false) reads u_j - u_i alone: the bonds' prestretch is part of the state.
-std::vector<Mat3> bond_dyads(const Model& model, const Vector& displacement, bool state,
-                             std::vector<Vec3>* bond_force) {
+// What one sweep over the bonds sums for one displacement field: per node, the sum over
+// its intact bonds of arm (x) force, and on a random lattice with face pieces each node's
+// force from its intact bonds (for the supports). A rate (`state` false) reads u_j - u_i
+// alone: the bonds' prestretch is part of the state.
+struct DyadSums {
+  DyadSums(const Model& model, const Vector& u, bool state_field, bool with_force)
+      : displacement(u), state(state_field),
+        linear(dynamic_cast<const SmallKinematics*>(&model.bond_law()) != nullptr),
+        sum(model.lattice.node_count(), Mat3::Zero()),
+        bond_force(with_force ? model.lattice.node_count() : 0, Vec3::Zero()) {}
+  const Vector& displacement;
+  bool state;
+  bool linear;  // the intact bonds' law is SmallKinematics
+  std::vector<Mat3> sum;
+  std::vector<Vec3> bond_force;
+};
+
+// Adds bond b's dyads for one field. In 2-D only the x-z block is summed: the y row and
+// column stay zero, and the sweep runs after every event.
+void add_bond_dyads(const Model& model, std::int64_t b, DyadSums& field) {
   const Lattice& lattice = model.lattice;
-  std::vector<Mat3> sum(lattice.node_count(), Mat3::Zero());
   const bool plane = lattice.dim == 2;
-  for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
-    if (!model.intact(b)) continue;
-    const Bond& bond = lattice.bonds[b];
-    const Vec3 t = model.bond_law().tension(model.springs(b), PairState::intact,
-                                            state ? model.bond_displacement(displacement, b)
-                                                  : model.relative_motion(displacement, b));
-    if (lattice.is_random()) {
-      // t acts on i, -t on j; each node's arm reaches to the facet's centroid.
-      const Vec3& centroid = lattice.bond_facet_centroid[b];
-      add_dyad(plane, sum[bond.i], centroid - lattice.positions[bond.i], t);
-      add_dyad(plane, sum[bond.j], lattice.positions[bond.j] - centroid, t);
-      if (bond_force) {
-        (*bond_force)[bond.i] += t;
-        (*bond_force)[bond.j] -= t;
-      }
-      continue;
-    }
-    const Vec3 d0 = lattice.bond_direction[b] * lattice.bond_length[b];
-    add_dyad(plane, sum[bond.i], d0, t);
-    add_dyad(plane, sum[bond.j], d0, t);
+  const Bond& bond = lattice.bonds[b];
+  const Vec3 du = field.state ? model.bond_displacement(field.displacement, b)
+                              : model.relative_motion(field.displacement, b);
+  Vec3 t;
+  if (field.linear) {
+    // SmallKinematics::tension written out: the same operations, without the call.
+    const Vec3& n = lattice.bond_direction[b];
+    const double kn = model.normal_stiffness[b], ks = model.shear_stiffness[b];
+    const double dn = n.dot(du);
+    t = ks * du + (kn - ks) * dn * n;
+  } else {
+    t = model.bond_law().tension(model.springs(b), PairState::intact, du);
   }
-  return sum;
+  if (lattice.is_random()) {
+    // t acts on i, -t on j; each node's arm reaches to the facet's centroid.
+    const Vec3& centroid = lattice.bond_facet_centroid[b];
+    add_dyad(plane, field.sum[bond.i], centroid - lattice.positions[bond.i], t);
+    add_dyad(plane, field.sum[bond.j], lattice.positions[bond.j] - centroid, t);
+    if (!field.bond_force.empty()) {
+      field.bond_force[bond.i] += t;
+      field.bond_force[bond.j] -= t;
+    }
+    return;
+  }
+  const Vec3 d0 = lattice.bond_direction[b] * lattice.bond_length[b];
+  add_dyad(plane, field.sum[bond.i], d0, t);
+  add_dyad(plane, field.sum[bond.j], d0, t);
 }
 
-std::vector<double> stresses(const Model& model, const Vector& displacement, bool with_loads) {
+// The Voigt stresses from one field's sums.
+std::vector<double> voigt_stresses(const Model& model, DyadSums& field, bool with_loads) {
   const Lattice& lattice = model.lattice;
-  const bool supports = !lattice.face_pieces.empty();
-  std::vector<Vec3> bond_force(supports ? lattice.node_count() : 0, Vec3::Zero());
-  std::vector<Mat3> sum =
-      bond_dyads(model, displacement, with_loads, supports ? &bond_force : nullptr);
-  if (supports) add_support_dyads(model, bond_force, with_loads, sum);
+  if (!lattice.face_pieces.empty()) add_support_dyads(model, field.bond_force, with_loads, field.sum);
+  const std::vector<Mat3>& sum = field.sum;
   std::vector<double> voigt(lattice.node_count() * 6);
   const double scale = 1.0 / (2 * lattice.node_volume);
   for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
@@ -113,6 +131,13 @@ std::vector<double> stresses(const Model& model, const Vector& displacement, boo
   return voigt;
 }
 
+std::vector<double> stresses(const Model& model, const Vector& displacement, bool with_loads) {
+  DyadSums field(model, displacement, with_loads, !model.lattice.face_pieces.empty());
+  for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b)
+    if (model.intact(b)) add_bond_dyads(model, b, field);
+  return voigt_stresses(model, field, with_loads);
+}
+
 }  // namespace
 
 std::vector<double> node_stresses(const Model& model, const Vector& displacement) {
@@ -121,6 +146,19 @@ std::vector<double> node_stresses(const Model& model, const Vector& displacement
 
 std::vector<double> node_stress_rates(const Model& model, const Vector& direction) {
   return stresses(model, direction, false);
+}
+
+NodeStressPath node_stress_path(const Model& model, const Vector& at_zero, const Vector& per_unit) {
+  // One sweep for both fields: each field's sums take the same terms in the same order as
+  // a sweep of its own, so the numbers are node_stresses' and node_stress_rates' exactly.
+  const bool supports = !model.lattice.face_pieces.empty();
+  DyadSums zero(model, at_zero, true, supports), rate(model, per_unit, false, supports);
+  for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
+    if (!model.intact(b)) continue;
+    add_bond_dyads(model, b, zero);
+    add_bond_dyads(model, b, rate);
+  }
+  return {voigt_stresses(model, zero, true), voigt_stresses(model, rate, false)};
 }
 
 }  // namespace latfrac

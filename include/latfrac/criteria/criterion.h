@@ -93,6 +93,11 @@ class FailureCriterion {
   virtual double rank(double normal_ratio, double shear_ratio_squared) const = 0;
   // True when only the stress tensor defines f (the bond-stress readings do not apply).
   virtual bool tensor_only() const { return false; }
+  // True when index() does not decrease as sigma_n or tau grows (more tension, less
+  // compression, more shear). Then on an affine path f(l) <= index(the larger sigma_n of
+  // the interval's ends, the larger |tau| of its ends): sigma_n is affine and |tau| convex,
+  // so both peak at an end. The crossing search uses it to skip bonds that cannot reach 1.
+  virtual bool index_grows_with_stress() const { return false; }
 
   const CriterionParameters& parameters() const { return parameters_; }
   int dim() const { return parameters_.dim; }

@@ -60,7 +60,8 @@ class FailureEvaluator {
   PathStresses path_stresses(const Model& model, const Vector& at_zero, const Vector& per_lambda,
                              double sign) const;
   // The smallest s in (from, to] at which bond b reaches f = 1 on the path; +infinity when
-  // it does not. A crossing after needed_until cannot matter (docs: FailureCriterion).
+  // it does not. A crossing after needed_until cannot matter (docs: FailureCriterion): it
+  // may be returned as +infinity (a bond that cannot reach 1 by then is not searched).
   double first_crossing(const Model& model, std::int64_t b, const PathStresses& path, double from,
                         double to, double needed_until) const;
 

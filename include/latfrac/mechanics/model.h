@@ -98,7 +98,10 @@ class Model {
   // Reaction forces on the prescribed dofs (internal minus external), zero on free dofs.
   Vector reactions(const Vector& displacement) const;
   // The displacement of node n as a 3-vector (y = 0 in 2-D).
-  Vec3 node_displacement(const Vector& displacement, std::int64_t node) const;
+  Vec3 node_displacement(const Vector& displacement, std::int64_t node) const {
+    if (lattice.dim == 2) return {displacement[2 * node], 0.0, displacement[2 * node + 1]};
+    return {displacement[3 * node], displacement[3 * node + 1], displacement[3 * node + 2]};
+  }
   // The relative displacement that bond b's law reads: u_j - u_i, less its prestretch
   // d_b when the scene starts stressed (what the pair's springs are stretched by, measured
   // from their unstressed state).

@@ -33,4 +33,11 @@ std::vector<double> node_stresses(const Model& model, const Vector& displacement
 // (without the loads the supports' forces balance in node_stresses).
 std::vector<double> node_stress_rates(const Model& model, const Vector& direction);
 
+// Both along an affine path, in one sweep over the bonds: node_stresses(at_zero) and
+// node_stress_rates(per_unit), the same numbers bit for bit.
+struct NodeStressPath {
+  std::vector<double> at_zero, per_unit;
+};
+NodeStressPath node_stress_path(const Model& model, const Vector& at_zero, const Vector& per_unit);
+
 }  // namespace latfrac
