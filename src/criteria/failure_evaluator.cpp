@@ -71,6 +71,19 @@ void FailureEvaluator::evaluate(const Model& model, const Vector& displacement,
   }
 }
 
+std::vector<CriticalBond> FailureEvaluator::indices_of(const Model& model, const Vector& displacement,
+                                                       const std::vector<std::int64_t>& bonds) const {
+  std::vector<double> node_stress;
+  if (uses_tensor_) node_stress = node_stresses(model, displacement);
+  std::vector<CriticalBond> out;
+  out.reserve(bonds.size());
+  for (std::int64_t b : bonds) {
+    const FailureIndex f = bond_index(model, displacement, b, node_stress);
+    out.push_back({b, f.value, f.mode});
+  }
+  return out;
+}
+
 // The hot loop of every cascade: on the strain reading with a linear law the criterion
 // ranks from the normal ratio and the squared shear ratio, free of square roots.
 double FailureEvaluator::rank(const Model& model, const Vector& displacement, std::int64_t b,

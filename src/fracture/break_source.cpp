@@ -58,11 +58,8 @@ double BreakSource::propose(const AffinePath& path, double from, double to) {
 // roundoff may leave its f a hair below 1).
 void BreakSource::take(double lambda) {
   const std::int64_t cascade_id = breaking_.new_cascade();
-  std::vector<double> index;
-  std::vector<BreakMode> modes;
-  evaluator_.evaluate(equilibrium_.model(), equilibrium_.displacement(lambda), index, modes);
-  std::vector<CriticalBond> group;
-  for (std::int64_t bond : proposed_.tied) group.push_back({bond, index[bond], modes[bond]});
+  const std::vector<CriticalBond> group =
+      evaluator_.indices_of(equilibrium_.model(), equilibrium_.displacement(lambda), proposed_.tied);
   breaking_.break_group(group, lambda, cascade_id);
   breaking_.cascade(lambda, cascade_id, true);
 }

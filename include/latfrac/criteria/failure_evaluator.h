@@ -46,6 +46,10 @@ class FailureEvaluator {
   // f of every bond (0 for broken bonds) and the break mode of each.
   void evaluate(const Model& model, const Vector& displacement, std::vector<double>& index,
                 std::vector<BreakMode>& mode) const;
+  // f and the break mode of the given intact bonds only (one sweep for the node stresses
+  // when the reading needs them, none over the other bonds' criteria).
+  std::vector<CriticalBond> indices_of(const Model& model, const Vector& displacement,
+                                       const std::vector<std::int64_t>& bonds) const;
   // The intact bond with the largest f; ties go to the lowest bond id.
   CriticalBond most_critical(const Model& model, const Vector& displacement) const;
   // The bonds tied for the largest f (within tie_tolerance relative), in bond-id order;
