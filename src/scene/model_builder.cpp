@@ -95,11 +95,16 @@ void set_lithostatic_prestress(const Scene& scene, Model& model) {
     const double vertical = lithostatic_stress(scene, g, top, lattice.bond_facet_centroid[b].z());
     const Vec3& n = lattice.bond_direction[b];
     const double area = lattice.bond_facet_area[b];
+    if (ratio == 1) {
+      // The isotropic state: t0 = sigma0 A along n0 exactly (no rounding shear, so bonds
+      // without shear springs carry it), delta_b = -sigma0 A / kn.
+      model.prestretch[b] = (-vertical * area / model.normal_stiffness[b]) * n;
+      continue;
+    }
     const Vec3 traction{ratio * vertical * n.x() * area, ratio * vertical * n.y() * area,
                         vertical * n.z() * area};
     const double normal = traction.dot(n);
-    // K = 1: the traction is along n0 exactly (no rounding shear on bonds without ks).
-    const Vec3 shear = ratio == 1 ? Vec3(Vec3::Zero()) : Vec3(traction - normal * n);
+    const Vec3 shear = traction - normal * n;
     Vec3 d = -(normal / model.normal_stiffness[b]) * n;
     if (shear.norm() > 0) {
       if (!(model.shear_stiffness[b] > 0))
