@@ -2,8 +2,6 @@
 // random ones.
 #include "latfrac/mechanics/node_stress.h"
 
-#include "latfrac/mechanics/bond_law.h"
-
 namespace latfrac {
 namespace {
 
@@ -53,13 +51,10 @@ void add_support_dyads(const Model& model, const std::vector<Vec3>& bond_force,
 // alone: the bonds' prestretch is part of the state.
 struct DyadSums {
   DyadSums(const Model& model, const Vector& u, bool state_field, bool with_force)
-      : displacement(u), state(state_field),
-        linear(dynamic_cast<const SmallKinematics*>(&model.bond_law()) != nullptr),
-        sum(model.lattice.node_count(), Mat3::Zero()),
+      : displacement(u), state(state_field), sum(model.lattice.node_count(), Mat3::Zero()),
         bond_force(with_force ? model.lattice.node_count() : 0, Vec3::Zero()) {}
   const Vector& displacement;
   bool state;
-  bool linear;  // the intact bonds' law is SmallKinematics
   std::vector<Mat3> sum;
   std::vector<Vec3> bond_force;
 };
@@ -72,16 +67,7 @@ void add_bond_dyads(const Model& model, std::int64_t b, DyadSums& field) {
   const Bond& bond = lattice.bonds[b];
   const Vec3 du = field.state ? model.bond_displacement(field.displacement, b)
                               : model.relative_motion(field.displacement, b);
-  Vec3 t;
-  if (field.linear) {
-    // SmallKinematics::tension written out: the same operations, without the call.
-    const Vec3& n = lattice.bond_direction[b];
-    const double kn = model.normal_stiffness[b], ks = model.shear_stiffness[b];
-    const double dn = n.dot(du);
-    t = ks * du + (kn - ks) * dn * n;
-  } else {
-    t = model.bond_law().tension(model.springs(b), PairState::intact, du);
-  }
+  const Vec3 t = model.bond_law().tension(model.springs(b), PairState::intact, du);
   if (lattice.is_random()) {
     // t acts on i, -t on j; each node's arm reaches to the facet's centroid.
     const Vec3& centroid = lattice.bond_facet_centroid[b];
