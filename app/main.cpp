@@ -20,6 +20,7 @@
 #include "latfrac/base/error.h"
 #include "latfrac/base/parallel.h"
 #include "latfrac/base/stop_signal.h"
+#include "latfrac/base/threads.h"
 #include "latfrac/io/problem_file.h"
 #include "latfrac/io/result_file.h"
 #include "latfrac/io/result_writer.h"
@@ -432,6 +433,8 @@ int main(int argc, char** argv) {
       std::cout << "latfrac " << LATFRAC_VERSION << " (commit " << LATFRAC_GIT_COMMIT << ")\n";
       return 0;
     }
+    // A bad LATFRAC_THREADS is refused before anything is read or written.
+    if (*run || *check || *study) threads::count();
     if (*run) {
       request.problem = problem;
       request.sets = sets;

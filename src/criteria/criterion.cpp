@@ -153,7 +153,14 @@ double FailureCriterion::first_tensor_crossing(const VoigtStress& s0, const Voig
     for (int k = 0; k < 6; ++k) at[k] = s0[k] + l * s1[k];
     return tensor_index(at, strength).value;
   };
-  return first_crossing_convex(f, from, std::min(to, needed_until));
+  // A convex f below 1 at `from` and at `needed_until` stays below 1 between them: no
+  // crossing that matters. Otherwise the bisection runs on [from, to] whatever
+  // needed_until is, so a bond's crossing does not depend on the bonds searched before it
+  // (the same on any number of threads).
+  const double until = std::min(to, needed_until);
+  if (until < to && until > from && f(from) < 1 && f(until) < 1)
+    return std::numeric_limits<double>::infinity();
+  return first_crossing_convex(f, from, to);
 }
 
 }  // namespace latfrac

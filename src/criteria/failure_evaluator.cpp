@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "latfrac/base/threads.h"
 #include "latfrac/mechanics/node_stress.h"
 
 namespace latfrac {
@@ -125,18 +126,18 @@ std::vector<CriticalBond> FailureEvaluator::critical_group(const Model& model,
   std::vector<double> node_stress;
   if (uses_tensor_) node_stress = node_stresses(model, displacement);
   const double tolerance = rank_tolerance();
+  // Every intact bond's rank, on threads (each bond on its own); 0 for the others.
+  const std::int64_t bonds = model.lattice.bond_count();
+  std::vector<double> ranks(bonds, 0.0);
+  threads::for_blocks(bonds, 1024, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t b = first; b < last; ++b)
+      if (model.intact(b)) ranks[b] = rank(model, displacement, b, node_stress);
+  });
   double best = 0;
-  std::vector<std::int64_t> candidates;
-  for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
-    if (!model.intact(b)) continue;
-    const double r = rank(model, displacement, b, node_stress);
-    if (r <= 0 || r < best * (1 - tolerance)) continue;
-    candidates.push_back(b);
-    best = std::max(best, r);
-  }
+  for (const double r : ranks) best = std::max(best, r);
   std::vector<CriticalBond> group;
-  for (std::int64_t b : candidates) {
-    if (rank(model, displacement, b, node_stress) < best * (1 - tolerance)) continue;
+  for (std::int64_t b = 0; b < bonds; ++b) {
+    if (ranks[b] <= 0 || ranks[b] < best * (1 - tolerance)) continue;
     const FailureIndex f = bond_index(model, displacement, b, node_stress);
     group.push_back({b, f.value, f.mode});
   }

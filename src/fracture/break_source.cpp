@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "latfrac/base/parallel.h"
+#include "latfrac/base/threads.h"
 
 namespace latfrac {
 
@@ -25,18 +26,26 @@ PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
   const PathStresses stresses = evaluator.path_stresses(model, full.at_zero, full.per_lambda, sign);
   const parallel::Range mine = parallel::share(model.lattice.bond_count());
   std::vector<double> crossing(mine.last - mine.first, std::numeric_limits<double>::infinity());
+  // Each thread's block keeps its own earliest crossing; a bond skipped there cannot cross
+  // before it (nor, then, in the tie window of the earliest of all), so the event is the
+  // same on any number of threads.
+  threads::for_blocks(mine.last - mine.first, 1024, [&](std::int64_t begin, std::int64_t end) {
+    double block_first = std::numeric_limits<double>::infinity();
+    for (std::int64_t b = mine.first + begin; b < mine.first + end; ++b) {
+      if (!model.intact(b)) continue;
+      // Only a crossing up to the earliest found so far (with room for ties) can matter.
+      const double needed_until =
+          std::isfinite(block_first)
+              ? block_first +
+                    2 * FailureEvaluator::tie_tolerance * std::max(std::abs(block_first), 1e-300)
+              : std::numeric_limits<double>::infinity();
+      double& c = crossing[b - mine.first];
+      c = evaluator.first_crossing(model, b, stresses, s_from, s_to, needed_until);
+      block_first = std::min(block_first, c);
+    }
+  });
   double first = std::numeric_limits<double>::infinity();
-  for (std::int64_t b = mine.first; b < mine.last; ++b) {
-    if (!model.intact(b)) continue;
-    // Only a crossing up to the earliest found so far (with room for ties) can matter.
-    const double needed_until =
-        std::isfinite(first)
-            ? first + 2 * FailureEvaluator::tie_tolerance * std::max(std::abs(first), 1e-300)
-            : std::numeric_limits<double>::infinity();
-    double& c = crossing[b - mine.first];
-    c = evaluator.first_crossing(model, b, stresses, s_from, s_to, needed_until);
-    first = std::min(first, c);
-  }
+  for (const double c : crossing) first = std::min(first, c);
   first = parallel::min_over_ranks(first);
   PathCrossing event;
   if (!std::isfinite(first)) return event;

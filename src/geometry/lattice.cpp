@@ -223,6 +223,23 @@ const char* lattice_kind_name(int dim, LatticeKind kind) {
   return dim == 2 ? "triangular" : "hcp";
 }
 
+NodeBonds node_bonds(const Lattice& lattice) {
+  NodeBonds index;
+  index.start.assign(lattice.node_count() + 1, 0);
+  for (const Bond& bond : lattice.bonds) {
+    ++index.start[bond.i + 1];
+    ++index.start[bond.j + 1];
+  }
+  for (std::int64_t n = 0; n < lattice.node_count(); ++n) index.start[n + 1] += index.start[n];
+  index.entries.resize(2 * lattice.bonds.size());
+  std::vector<std::int64_t> next(index.start.begin(), index.start.end() - 1);
+  for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
+    index.entries[next[lattice.bonds[b].i]++] = 2 * b;
+    index.entries[next[lattice.bonds[b].j]++] = 2 * b + 1;
+  }
+  return index;
+}
+
 const char* to_string(Face face) {
   switch (face) {
     case Face::x_min:

@@ -1,6 +1,8 @@
 // The forces of a model (internal forces, residuals, reactions) and the editor of its states.
 #include "latfrac/mechanics/model.h"
 
+#include "latfrac/base/threads.h"
+
 namespace latfrac {
 
 std::vector<std::uint8_t> Model::intact_flags() const {
@@ -33,6 +35,13 @@ Vec3 Model::bond_tension(const Vector& displacement, std::int64_t b) const {
   return law->tension(springs(b), states_[b], bond_displacement(displacement, b));
 }
 
+const NodeBonds& Model::node_bonds() const {
+  if (node_bonds_.node_count() != lattice.node_count() ||
+      static_cast<std::int64_t>(node_bonds_.entries.size()) != 2 * lattice.bond_count())
+    node_bonds_ = latfrac::node_bonds(lattice);
+  return node_bonds_;
+}
+
 // An open pair carries nothing (pair_state.h), so only the others are evaluated.
 void Model::add_bond_force(const Vector& displacement, std::int64_t b, Vector& force) const {
   if (states_[b] == PairState::open) return;
@@ -48,9 +57,42 @@ void Model::add_bond_force(const Vector& displacement, std::int64_t b, Vector& f
   }
 }
 
+// On threads, in two passes: every bond's tension (each bond on its own), then each
+// node's sum over its bonds in bond order (node_bonds()), the same terms in the same order
+// as add_bond_force over all bonds: the same numbers on any number of threads.
 Vector Model::internal_force(const Vector& displacement) const {
+  const std::int64_t bonds = lattice.bond_count();
+  std::vector<Vec3> tension(bonds);
+  std::vector<std::uint8_t> carries(bonds, 0);
+  threads::for_blocks(bonds, 2048, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t b = first; b < last; ++b) {
+      if (states_[b] == PairState::open) continue;
+      const InteractionLaw* law = law_of(b);
+      if (!law) continue;
+      tension[b] = law->tension(springs(b), states_[b], bond_displacement(displacement, b));
+      carries[b] = 1;
+    }
+  });
+  const int d = dim();
   Vector force = Vector::Zero(dofs_.dof_count());
-  for (std::int64_t b = 0; b < lattice.bond_count(); ++b) add_bond_force(displacement, b, force);
+  const NodeBonds& index = node_bonds();
+  threads::for_blocks(lattice.node_count(), 2048, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t n = first; n < last; ++n) {
+      for (std::int64_t k = index.start[n]; k < index.start[n + 1]; ++k) {
+        const std::int64_t b = index.entries[k] / 2;
+        if (!carries[b]) continue;
+        const bool end_j = index.entries[k] % 2 == 1;
+        for (int c = 0; c < d; ++c) {
+          const double component = tension[b][d == 2 ? 2 * c : c];
+          if (end_j) {
+            force[n * d + c] += component;
+          } else {
+            force[n * d + c] -= component;
+          }
+        }
+      }
+    }
+  });
   return force;
 }
 

@@ -2,6 +2,10 @@
 // random ones.
 #include "latfrac/mechanics/node_stress.h"
 
+#include <initializer_list>
+
+#include "latfrac/base/threads.h"
+
 namespace latfrac {
 namespace {
 
@@ -45,7 +49,7 @@ void add_support_dyads(const Model& model, const std::vector<Vec3>& bond_force,
   }
 }
 
-// What one sweep over the bonds sums for one displacement field: per node, the sum over
+// What a sweep over the bonds sums for one displacement field: per node, the sum over
 // its intact bonds of arm (x) force, and on a random lattice with face pieces each node's
 // force from its intact bonds (for the supports). A rate (`state` false) reads u_j - u_i
 // alone: the bonds' prestretch is part of the state.
@@ -59,29 +63,61 @@ struct DyadSums {
   std::vector<Vec3> bond_force;
 };
 
-// Adds bond b's dyads for one field. In 2-D only the x-z block is summed: the y row and
-// column stay zero, and the sweep runs after every event.
-void add_bond_dyads(const Model& model, std::int64_t b, DyadSums& field) {
+// The fewest bonds or nodes worth a thread of their own.
+constexpr std::int64_t grain = 2048;
+
+// Sums the dyads of every intact bond into each field, in two threaded passes: the bonds'
+// tensions (each bond on its own), then each node's sum over its bonds in bond order
+// (Model::node_bonds), which adds the same terms in the same order as one loop over the
+// bonds adding to both ends: the same numbers on any number of threads. In 2-D only the
+// x-z block is summed: the y row and column stay zero.
+void sum_dyads(const Model& model, std::initializer_list<DyadSums*> fields) {
   const Lattice& lattice = model.lattice;
   const bool plane = lattice.dim == 2;
-  const Bond& bond = lattice.bonds[b];
-  const Vec3 du = field.state ? model.bond_displacement(field.displacement, b)
-                              : model.relative_motion(field.displacement, b);
-  const Vec3 t = model.bond_law().tension(model.springs(b), PairState::intact, du);
-  if (lattice.is_random()) {
-    // t acts on i, -t on j; each node's arm reaches to the facet's centroid.
-    const Vec3& centroid = lattice.bond_facet_centroid[b];
-    add_dyad(plane, field.sum[bond.i], centroid - lattice.positions[bond.i], t);
-    add_dyad(plane, field.sum[bond.j], lattice.positions[bond.j] - centroid, t);
-    if (!field.bond_force.empty()) {
-      field.bond_force[bond.i] += t;
-      field.bond_force[bond.j] -= t;
+  const std::int64_t bonds = lattice.bond_count();
+  std::vector<std::vector<Vec3>> tension(fields.size(), std::vector<Vec3>(bonds));
+  threads::for_blocks(bonds, grain, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t b = first; b < last; ++b) {
+      if (!model.intact(b)) continue;
+      std::size_t f = 0;
+      for (const DyadSums* field : fields) {
+        const Vec3 du = field->state ? model.bond_displacement(field->displacement, b)
+                                     : model.relative_motion(field->displacement, b);
+        tension[f++][b] = model.bond_law().tension(model.springs(b), PairState::intact, du);
+      }
     }
-    return;
-  }
-  const Vec3 d0 = lattice.bond_direction[b] * lattice.bond_length[b];
-  add_dyad(plane, field.sum[bond.i], d0, t);
-  add_dyad(plane, field.sum[bond.j], d0, t);
+  });
+  const NodeBonds& index = model.node_bonds();
+  threads::for_blocks(lattice.node_count(), grain, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t n = first; n < last; ++n) {
+      for (std::int64_t k = index.start[n]; k < index.start[n + 1]; ++k) {
+        const std::int64_t b = index.entries[k] / 2;
+        if (!model.intact(b)) continue;
+        const bool end_j = index.entries[k] % 2 == 1;
+        // Random: t acts on i, -t on j, each node's arm reaching to the facet's centroid.
+        // Regular: the branch form, d0 for both ends.
+        Vec3 arm;
+        if (lattice.is_random()) {
+          const Vec3& centroid = lattice.bond_facet_centroid[b];
+          arm = end_j ? Vec3(lattice.positions[n] - centroid) : Vec3(centroid - lattice.positions[n]);
+        } else {
+          arm = lattice.bond_direction[b] * lattice.bond_length[b];
+        }
+        std::size_t f = 0;
+        for (DyadSums* field : fields) {
+          const Vec3& t = tension[f++][b];
+          add_dyad(plane, field->sum[n], arm, t);
+          if (!field->bond_force.empty()) {
+            if (end_j) {
+              field->bond_force[n] -= t;
+            } else {
+              field->bond_force[n] += t;
+            }
+          }
+        }
+      }
+    }
+  });
 }
 
 // The Voigt stresses from one field's sums.
@@ -119,8 +155,7 @@ std::vector<double> voigt_stresses(const Model& model, DyadSums& field, bool wit
 
 std::vector<double> stresses(const Model& model, const Vector& displacement, bool with_loads) {
   DyadSums field(model, displacement, with_loads, !model.lattice.face_pieces.empty());
-  for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b)
-    if (model.intact(b)) add_bond_dyads(model, b, field);
+  sum_dyads(model, {&field});
   return voigt_stresses(model, field, with_loads);
 }
 
@@ -139,11 +174,7 @@ NodeStressPath node_stress_path(const Model& model, const Vector& at_zero, const
   // a sweep of its own, so the numbers are node_stresses' and node_stress_rates' exactly.
   const bool supports = !model.lattice.face_pieces.empty();
   DyadSums zero(model, at_zero, true, supports), rate(model, per_unit, false, supports);
-  for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
-    if (!model.intact(b)) continue;
-    add_bond_dyads(model, b, zero);
-    add_bond_dyads(model, b, rate);
-  }
+  sum_dyads(model, {&zero, &rate});
   return {voigt_stresses(model, zero, true), voigt_stresses(model, rate, false)};
 }
 

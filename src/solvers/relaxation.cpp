@@ -90,8 +90,7 @@ class LinearNodes {
   using VecD = Eigen::Matrix<double, D, 1>;
   using MatD = Eigen::Matrix<double, D, D>;
 
-  LinearNodes(const Model& model, const std::vector<std::int64_t>& first_bond,
-              const std::vector<std::int64_t>& bond_of_node, const Vector& displacement,
+  LinearNodes(const Model& model, const NodeBonds& node_bonds, const Vector& displacement,
               double omega)
       : external_(model.external_force) {
     const std::int64_t nodes = model.lattice.node_count();
@@ -103,8 +102,8 @@ class LinearNodes {
       first_[n + 1] = first_[n];
       if (!free_axes[n]) continue;
       Mat3 block = Mat3::Zero();
-      for (std::int64_t k = first_bond[n]; k < first_bond[n + 1]; ++k) {
-        const std::int64_t b = bond_of_node[k];
+      for (std::int64_t k = node_bonds.start[n]; k < node_bonds.start[n + 1]; ++k) {
+        const std::int64_t b = node_bonds.entries[k] / 2;
         if (!acts(model, b)) continue;
         const Bond& bond = model.lattice.bonds[b];
         Mat3 tangent;
@@ -168,11 +167,9 @@ class LinearNodes {
 // The sweep of any bond law: tension and tangent from the law at every visit.
 class GeneralNodes {
  public:
-  GeneralNodes(const Model& model, const std::vector<std::int64_t>& first_bond,
-               const std::vector<std::int64_t>& bond_of_node, double omega)
+  GeneralNodes(const Model& model, const NodeBonds& node_bonds, double omega)
       : model_(model),
-        first_bond_(first_bond),
-        bond_of_node_(bond_of_node),
+        node_bonds_(node_bonds),
         omega_(omega),
         free_axes_(free_axes_of(model)) {
     acts_.resize(model.lattice.bond_count());
@@ -210,8 +207,8 @@ class GeneralNodes {
     Vec3 f = model_.node_displacement(model_.external_force, n);
     if (block) block->setZero();
     Mat3 tangent;
-    for (std::int64_t k = first_bond_[n]; k < first_bond_[n + 1]; ++k) {
-      const std::int64_t b = bond_of_node_[k];
+    for (std::int64_t k = node_bonds_.start[n]; k < node_bonds_.start[n + 1]; ++k) {
+      const std::int64_t b = node_bonds_.entries[k] / 2;
       if (!acts_[b]) continue;
       const Vec3 t = bond_tension(model_, b, model_.bond_displacement(u, b),
                                   block ? &tangent : nullptr);
@@ -227,8 +224,7 @@ class GeneralNodes {
   }
 
   const Model& model_;
-  const std::vector<std::int64_t>& first_bond_;
-  const std::vector<std::int64_t>& bond_of_node_;
+  const NodeBonds& node_bonds_;
   double omega_;
   std::vector<std::uint8_t> free_axes_;
   std::vector<std::uint8_t> acts_;  // per bond: acts() when the solve started
@@ -271,27 +267,14 @@ RelaxationSolver::RelaxationSolver(const Model& model, const SolverOptions& opti
     throw InputError("relaxation_max_sweeps = " + std::to_string(max_sweeps_) +
                      ": allowed: relaxation_max_sweeps >= 0");
   }
-  const Lattice& lattice = model.lattice;
-  const std::int64_t nodes = lattice.node_count();
-  first_bond_.assign(nodes + 1, 0);
-  for (const Bond& bond : lattice.bonds) {
-    ++first_bond_[bond.i + 1];
-    ++first_bond_[bond.j + 1];
-  }
-  for (std::int64_t n = 0; n < nodes; ++n) first_bond_[n + 1] += first_bond_[n];
-  bond_of_node_.resize(first_bond_[nodes]);
-  std::vector<std::int64_t> next(first_bond_.begin(), first_bond_.end() - 1);
-  for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
-    bond_of_node_[next[lattice.bonds[b].i]++] = b;
-    bond_of_node_[next[lattice.bonds[b].j]++] = b;
-  }
+  node_bonds_ = node_bonds(model.lattice);
 }
 
 RelaxationReport RelaxationSolver::solve(const Model& model, double lambda,
                                          Vector& free_displacement) const {
   const Lattice& lattice = model.lattice;
-  if (static_cast<std::int64_t>(first_bond_.size()) != lattice.node_count() + 1 ||
-      static_cast<std::int64_t>(bond_of_node_.size()) != 2 * lattice.bond_count()) {
+  if (node_bonds_.node_count() != lattice.node_count() ||
+      static_cast<std::int64_t>(node_bonds_.entries.size()) != 2 * lattice.bond_count()) {
     throw Error(
         "RelaxationSolver::solve: the model's lattice is not the one the solver was built for");
   }
@@ -308,13 +291,13 @@ RelaxationReport RelaxationSolver::solve(const Model& model, double lambda,
   Vector u = model.full_displacement(free_displacement, lambda);
   RelaxationReport report;
   if (model.is_linear() && model.dim() == 2) {
-    const LinearNodes<2> nodes(model, first_bond_, bond_of_node_, u, omega_);
+    const LinearNodes<2> nodes(model, node_bonds_, u, omega_);
     report = iterate(nodes, u, load, tolerance_, max_sweeps_, check_interval);
   } else if (model.is_linear()) {
-    const LinearNodes<3> nodes(model, first_bond_, bond_of_node_, u, omega_);
+    const LinearNodes<3> nodes(model, node_bonds_, u, omega_);
     report = iterate(nodes, u, load, tolerance_, max_sweeps_, check_interval);
   } else {
-    const GeneralNodes nodes(model, first_bond_, bond_of_node_, omega_);
+    const GeneralNodes nodes(model, node_bonds_, omega_);
     report = iterate(nodes, u, load, tolerance_, max_sweeps_, check_interval);
   }
 

@@ -83,7 +83,8 @@ class FailureCriterion {
                                 double from, double to) const = 0;
   // The same for tensor_index() on S(l) = s0 + l s1. By default bisection on the convex f;
   // a crossing later than `needed_until` cannot matter to the caller (a later bond cannot
-  // come first), so the bisection may stop looking there.
+  // come first), so a bond below 1 there is not bisected. The crossing found does not
+  // depend on needed_until.
   virtual double first_tensor_crossing(const VoigtStress& s0, const VoigtStress& s1,
                                        const BondStrength& strength, double from, double to,
                                        double needed_until) const;

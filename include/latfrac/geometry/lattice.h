@@ -109,4 +109,14 @@ class Lattice {
 // The same spec (a random lattice's seed included) gives the same lattice, bit for bit.
 Lattice build_lattice(const LatticeSpec& spec);
 
+// Each node's bonds, in increasing bond order: node n's are entries[start[n]] up to
+// entries[start[n + 1]], each 2 b for a bond b whose end i it is and 2 b + 1 for its end j.
+// A sum over a node's bonds in this order adds the same terms in the same order as a loop
+// over all bonds that adds each bond to its two ends (the threaded sweeps' gathers).
+struct NodeBonds {
+  std::vector<std::int64_t> start, entries;
+  std::int64_t node_count() const { return static_cast<std::int64_t>(start.size()) - 1; }
+};
+NodeBonds node_bonds(const Lattice& lattice);
+
 }  // namespace latfrac

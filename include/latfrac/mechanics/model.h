@@ -117,6 +117,9 @@ class Model {
   }
   // Bond b's tension (its law's, in its state) at the full displacement; zero without a law.
   Vec3 bond_tension(const Vector& displacement, std::int64_t bond) const;
+  // The lattice's node-to-bond index, built on the first call and again when the
+  // lattice's bonds or nodes have changed in number. Call it outside threaded blocks.
+  const NodeBonds& node_bonds() const;
   // Adds bond b's force to `force`: +t on node j, -t on node i.
   void add_bond_force(const Vector& displacement, std::int64_t bond, Vector& force) const;
 
@@ -127,6 +130,7 @@ class Model {
   std::unique_ptr<BondLaw> bond_law_;
   std::unique_ptr<InteractionLaw> contact_law_;  // null without contact
   std::vector<ContactMemory> memory_;            // per bond with friction, else empty
+  mutable NodeBonds node_bonds_;                 // a cache of node_bonds(lattice)
 };
 
 // The one way to change what a model's run changes (its pair states and supports) and

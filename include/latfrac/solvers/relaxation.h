@@ -48,9 +48,7 @@ class RelaxationSolver {
   double omega_;
   double tolerance_;
   long max_sweeps_;
-  // Node n's bonds are bond_of_node_[first_bond_[n] .. first_bond_[n + 1]), by bond id.
-  std::vector<std::int64_t> first_bond_;
-  std::vector<std::int64_t> bond_of_node_;
+  NodeBonds node_bonds_;  // node_bonds(the model's lattice)
 };
 
 }  // namespace latfrac
