@@ -23,15 +23,16 @@ struct ThreadCount {
   ~ThreadCount() { threads::set_count(0); }
 };
 
-// A random 2-D section of about 9000 bonds (enough for three blocks of 2048), a tenth of
-// its bonds broken, and a random displacement field.
+// A random 2-D section of about 12 500 bonds and 4200 nodes (enough for two threads: 4096
+// bonds and 2048 nodes each at least), a tenth of its bonds broken, and a random
+// displacement field.
 struct Sample {
   Model model;
   Vector u, rate;
 };
 
 Sample sample() {
-  Scene scene = box_scene(2, 250.0, {15e3, 0, 9e3}, true);
+  Scene scene = box_scene(2, 250.0, {25e3, 0, 9e3}, true);
   scene.lattice.kind = LatticeKind::random;
   scene.lattice.seed = 3;
   Sample s{build_model(scene), {}, {}};
@@ -58,7 +59,7 @@ TEST_CASE("for_blocks covers every item once, in disjoint blocks, and rethrows",
     for (std::int64_t k = first; k < last; ++k) ++visits[k];
   });
   for (const auto& v : visits) REQUIRE(v == 1);
-  CHECK(blocks == 3);
+  CHECK(blocks == 12);  // four per thread
   // Fewer items than the grain asks for: the calling thread alone, one block.
   blocks = 0;
   threads::for_blocks(100, 64, [&](std::int64_t first, std::int64_t last) {
@@ -99,7 +100,8 @@ TEST_CASE("node_bonds lists each node's bonds in bond order, with the end it is"
 
 TEST_CASE("threaded sweeps give the serial loop's numbers bit for bit", "[threads]") {
   const Sample s = sample();
-  REQUIRE(s.model.lattice.bond_count() > 3 * 2048);
+  REQUIRE(s.model.lattice.bond_count() >= 2 * 4096);
+  REQUIRE(s.model.lattice.node_count() >= 2 * 2048);
   // The serial definition: each bond's force added to its two ends, in bond order.
   Vector serial = Vector::Zero(s.model.dofs().dof_count());
   for (std::int64_t b = 0; b < s.model.lattice.bond_count(); ++b)
@@ -124,11 +126,11 @@ TEST_CASE("threaded sweeps give the serial loop's numbers bit for bit", "[thread
 
 TEST_CASE("an event-driven run breaks the same bonds at the same lambdas on 1 and 2 threads",
           "[threads][event]") {
-  // The complete model's scene, coarse and short: contact friction, pair switches,
-  // cascades, and every threaded sweep (about 6000 bonds).
+  // The complete model's scene, short: contact friction, pair switches, cascades, and
+  // every threaded sweep on two threads (12460 bonds, 4232 nodes).
   const Scene scene = read_problem_file(
       std::string(LATFRAC_PROBLEMS_DIR) + "/graben-complete-2d.toml",
-      {"lattice.spacing=1000", "loading.total=0.0005", "output.snapshots=[]"});
+      {"lattice.spacing=707.1", "loading.total=0.0004", "output.snapshots=[]"});
   RunResult result[2];
   for (int k = 0; k < 2; ++k) {
     const ThreadCount count(k + 1);

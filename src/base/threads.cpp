@@ -68,13 +68,16 @@ void for_blocks(std::int64_t items, std::int64_t grain,
     body(0, items);
     return;
   }
+  // Four blocks per thread, taken in turn by whichever thread is free: the bonds near
+  // failure (the costly ones) and the broken ones (skipped) are not spread evenly over
+  // the bond ids.
+  const std::int64_t blocks = std::min<std::int64_t>(4 * threads, items);
   const ActiveLevel active;
   std::exception_ptr error;
-#pragma omp parallel num_threads(threads)
-  {
-    const std::int64_t t = omp_get_thread_num(), n = omp_get_num_threads();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+  for (std::int64_t k = 0; k < blocks; ++k) {
     try {
-      body(items * t / n, items * (t + 1) / n);
+      body(items * k / blocks, items * (k + 1) / blocks);
     } catch (...) {
 #pragma omp critical(latfrac_for_blocks)
       if (!error) error = std::current_exception();

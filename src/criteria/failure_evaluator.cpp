@@ -129,7 +129,7 @@ std::vector<CriticalBond> FailureEvaluator::critical_group(const Model& model,
   // Every intact bond's rank, on threads (each bond on its own); 0 for the others.
   const std::int64_t bonds = model.lattice.bond_count();
   std::vector<double> ranks(bonds, 0.0);
-  threads::for_blocks(bonds, 1024, [&](std::int64_t first, std::int64_t last) {
+  threads::for_blocks(bonds, 4096, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t b = first; b < last; ++b)
       if (model.intact(b)) ranks[b] = rank(model, displacement, b, node_stress);
   });

@@ -64,7 +64,7 @@ Vector Model::internal_force(const Vector& displacement) const {
   const std::int64_t bonds = lattice.bond_count();
   std::vector<Vec3> tension(bonds);
   std::vector<std::uint8_t> carries(bonds, 0);
-  threads::for_blocks(bonds, 2048, [&](std::int64_t first, std::int64_t last) {
+  threads::for_blocks(bonds, 4096, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t b = first; b < last; ++b) {
       if (states_[b] == PairState::open) continue;
       const InteractionLaw* law = law_of(b);

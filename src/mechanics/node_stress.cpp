@@ -64,7 +64,7 @@ struct DyadSums {
 };
 
 // The fewest bonds or nodes worth a thread of their own.
-constexpr std::int64_t grain = 2048;
+constexpr std::int64_t bond_grain = 4096, node_grain = 2048;
 
 // Sums the dyads of every intact bond into each field, in two threaded passes: the bonds'
 // tensions (each bond on its own), then each node's sum over its bonds in bond order
@@ -76,7 +76,7 @@ void sum_dyads(const Model& model, std::initializer_list<DyadSums*> fields) {
   const bool plane = lattice.dim == 2;
   const std::int64_t bonds = lattice.bond_count();
   std::vector<std::vector<Vec3>> tension(fields.size(), std::vector<Vec3>(bonds));
-  threads::for_blocks(bonds, grain, [&](std::int64_t first, std::int64_t last) {
+  threads::for_blocks(bonds, bond_grain, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t b = first; b < last; ++b) {
       if (!model.intact(b)) continue;
       std::size_t f = 0;
@@ -88,7 +88,7 @@ void sum_dyads(const Model& model, std::initializer_list<DyadSums*> fields) {
     }
   });
   const NodeBonds& index = model.node_bonds();
-  threads::for_blocks(lattice.node_count(), grain, [&](std::int64_t first, std::int64_t last) {
+  threads::for_blocks(lattice.node_count(), node_grain, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t n = first; n < last; ++n) {
       for (std::int64_t k = index.start[n]; k < index.start[n + 1]; ++k) {
         const std::int64_t b = index.entries[k] / 2;

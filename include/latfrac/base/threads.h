@@ -18,9 +18,11 @@ int count();
 // Sets it for the rest of the process (0: back to LATFRAC_THREADS or the cores).
 void set_count(int threads);
 
-// Runs body(first, last) on disjoint blocks that cover [0, items), one per thread, in
-// parallel; on the calling thread alone when one thread is used or the items are fewer
-// than `grain` per thread. An exception thrown by a block is rethrown here.
+// Runs body(first, last) on disjoint blocks that cover [0, items), in parallel: as many
+// threads as have `grain` items each (waking a thread costs about as much as a few
+// thousand bonds' work), four blocks per thread, each block taken by the next free
+// thread. On the calling thread alone, as one block, when that is one thread. An
+// exception thrown by a block is rethrown here.
 void for_blocks(std::int64_t items, std::int64_t grain,
                 const std::function<void(std::int64_t first, std::int64_t last)>& body);
 
