@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 
+#include "latfrac/fracture/break_source.h"
 #include "latfrac/fracture/fracture_run.h"
 #include "latfrac/fracture/initial_supports.h"
 #include "latfrac/mechanics/model.h"
@@ -215,4 +216,44 @@ TEST_CASE("Large kinematics agrees with small kinematics at small strain", "[con
   // The two laws differ at second order in the strain (1e-5 here).
   CHECK(difference / scale < 1e-3);
   CHECK(difference > 0);
+}
+
+TEST_CASE("the cascade's screen passes every bond the exact check finds at f >= 1",
+          "[event][screen]") {
+  // FailureEvaluator::may_fail_at reads f on the path's stresses, which differ from the
+  // state's by rounding: wherever critical_group finds a bond at f >= 1, the screen must
+  // say so (or the cascade would end early); well below the first crossing it must not
+  // (on the stress readings).
+  const BondStress reading =
+      GENERATE(BondStress::tensor, BondStress::critical_plane, BondStress::strain);
+  // Without gravity nothing is near failure at lambda = 0; extension brings the first
+  // bond to f = 1 at lc.
+  Scene scene = testing::box_scene(2, 1000.0, {16e3, 0, 8e3}, false);
+  scene.strength = testing::strength_of(Criterion::elliptic, 50e6);
+  scene.strength->bond_stress = reading;
+  Model model = build_model(scene);
+  prepare_supports(model, scene.source_path);
+  EquilibriumSolver solver(model, scene.solver);
+  const FailureEvaluator evaluator(*scene.strength, model);
+  const AffinePath path = solver.affine_path();
+  const FullPath full = full_path(model, path);
+  const PathStresses stresses = evaluator.path_stresses(model, full.at_zero, full.per_lambda, 1.0);
+  const PathCrossing first = next_break(model, evaluator, stresses, 0.0, 0.01);
+  REQUIRE(first.found());
+  const double lc = first.lambda;
+  REQUIRE(lc > 0);
+  // (On the strain reading the screen always passes: its exact check has no sweep to save.)
+  CHECK(evaluator.may_fail_at(model, stresses, 0.99 * lc) == (reading == BondStress::strain));
+  CHECK(evaluator.critical_group(model, model.full_displacement(path.at(0.99 * lc), 0.99 * lc), 1.0)
+            .empty());
+  int exact_found = 0;
+  for (int k = -20; k <= 20; ++k) {
+    const double lambda = lc * (1 + k * 1e-13);
+    const Vector u = model.full_displacement(path.at(lambda), lambda);
+    const bool exact = !evaluator.critical_group(model, u, 1.0).empty();
+    exact_found += exact;
+    if (exact) CHECK(evaluator.may_fail_at(model, stresses, lambda));
+  }
+  CHECK(exact_found > 0);  // the exact check did find the bond on this side of the crossing
+  CHECK(evaluator.may_fail_at(model, stresses, 1.01 * lc));
 }

@@ -59,11 +59,15 @@ int count() {
 
 void set_count(int threads) { chosen = std::max(0, threads); }
 
+int used(std::int64_t items, std::int64_t grain) {
+  const std::int64_t most = std::max<std::int64_t>(1, items / std::max<std::int64_t>(grain, 1));
+  return static_cast<int>(std::min<std::int64_t>(count(), most));
+}
+
 void for_blocks(std::int64_t items, std::int64_t grain,
                 const std::function<void(std::int64_t, std::int64_t)>& body) {
   if (items <= 0) return;
-  const std::int64_t most = std::max<std::int64_t>(1, items / std::max<std::int64_t>(grain, 1));
-  const int threads = static_cast<int>(std::min<std::int64_t>(count(), most));
+  const int threads = used(items, grain);
   if (threads <= 1) {
     body(0, items);
     return;

@@ -2,6 +2,7 @@
 #include "latfrac/criteria/failure_evaluator.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -183,29 +184,34 @@ bool may_reach_one(const FailureCriterion& criterion, const AffineBondStress& s,
 
 }  // namespace
 
-// Along the path every bond quantity is affine in s: the stress tensor, its resolution on
-// the bond direction (linear in the tensor), and the strains. A bond whose f cannot reach
-// 1 before `needed_until` (nor before `to`) is skipped: its crossing, if any, is later.
-double FailureEvaluator::first_crossing(const Model& model, std::int64_t b,
-                                        const PathStresses& path, double from, double to,
-                                        double needed_until) const {
-  const BondStrength strength = strength_of(model, b);
-  const double until = std::min(to, needed_until);
-  if (reading_ != Reading::strain) {
-    const Bond& bond = model.lattice.bonds[b];
-    const VoigtStress s0 = bond_stress_tensor(path.stress_at_zero, bond);
-    const VoigtStress s1 = bond_stress_tensor(path.stress_per_unit, bond);
-    if (reading_ == Reading::tensor_index)
-      return criterion_->first_tensor_crossing(s0, s1, strength, from, to, needed_until);
-    const Vec3& n0 = model.lattice.bond_direction[b];
-    const ResolvedStress r0 = resolve_on(s0, n0);
-    const ResolvedStress r1 = resolve_on(s1, n0);
-    const AffineBondStress affine{r0.normal, r1.normal, r0.shear, r1.shear};
-    if (!may_reach_one(*criterion_, affine, strength, from, until))
-      return std::numeric_limits<double>::infinity();
-    return criterion_->first_crossing(affine, strength, from, to);
-  }
+bool FailureEvaluator::may_fail_at(const Model& model, const PathStresses& path, double s) const {
+  // On the strain reading the exact check needs no node stresses: nothing to save.
+  if (!uses_tensor_) return true;
+  // The node stresses at s, then each bond's f from them as the exact check computes it.
+  std::vector<double> node_stress(path.stress_at_zero.size());
+  for (std::size_t k = 0; k < node_stress.size(); ++k)
+    node_stress[k] = path.stress_at_zero[k] + s * path.stress_per_unit[k];
+  const Vector none;
+  std::atomic<bool> found = false;
+  threads::for_blocks(model.lattice.bond_count(), 4096, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t b = first; b < last && !found.load(std::memory_order_relaxed); ++b) {
+      if (!model.intact(b)) continue;
+      // NaN passes too: the exact check decides.
+      if (!(bond_index(model, none, b, node_stress).value < 1 - screen_margin)) found = true;
+    }
+  });
+  return found;
+}
+
+AffineBondStress FailureEvaluator::affine_stress(const Model& model, std::int64_t b,
+                                                 const PathStresses& path) const {
   const Vec3& n0 = model.lattice.bond_direction[b];
+  if (reading_ == Reading::resolved_tensor) {
+    const Bond& bond = model.lattice.bonds[b];
+    const ResolvedStress r0 = resolve_on(bond_stress_tensor(path.stress_at_zero, bond), n0);
+    const ResolvedStress r1 = resolve_on(bond_stress_tensor(path.stress_per_unit, bond), n0);
+    return {r0.normal, r1.normal, r0.shear, r1.shear};
+  }
   const double length = model.lattice.bond_length[b];
   const Vec3 du0 = model.bond_displacement(path.at_zero, b);
   const Vec3 du1 = model.relative_motion(path.per_unit, b);
@@ -215,6 +221,24 @@ double FailureEvaluator::first_crossing(const Model& model, std::int64_t b,
   affine.normal1 = e * n0.dot(du1);
   affine.shear0 = g * (du0 - n0.dot(du0) * n0);
   affine.shear1 = g * (du1 - n0.dot(du1) * n0);
+  return affine;
+}
+
+// Along the path every bond quantity is affine in s: the stress tensor, its resolution on
+// the bond direction (linear in the tensor), and the strains. A bond whose f cannot reach
+// 1 before `needed_until` (nor before `to`) is skipped: its crossing, if any, is later.
+double FailureEvaluator::first_crossing(const Model& model, std::int64_t b,
+                                        const PathStresses& path, double from, double to,
+                                        double needed_until) const {
+  const BondStrength strength = strength_of(model, b);
+  const double until = std::min(to, needed_until);
+  if (reading_ == Reading::tensor_index) {
+    const Bond& bond = model.lattice.bonds[b];
+    return criterion_->first_tensor_crossing(bond_stress_tensor(path.stress_at_zero, bond),
+                                             bond_stress_tensor(path.stress_per_unit, bond),
+                                             strength, from, to, needed_until);
+  }
+  const AffineBondStress affine = affine_stress(model, b, path);
   if (!may_reach_one(*criterion_, affine, strength, from, until))
     return std::numeric_limits<double>::infinity();
   return criterion_->first_crossing(affine, strength, from, to);

@@ -20,10 +20,28 @@ FullPath full_path(const Model& model, const AffinePath& path) {
 // the tie window of it) is gathered in bond order: the same event on any number of ranks.
 PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
                         const AffinePath& path, double from, double to) {
+  const double sign = to < from ? -1.0 : 1.0;
+  const FullPath full = full_path(model, path);
+  return next_break(model, evaluator,
+                    evaluator.path_stresses(model, full.at_zero, full.per_lambda, sign), from, to);
+}
+
+const PathStresses& PathStressCache::current(double lambda, double sign) {
+  if (!valid_ || version_ != equilibrium_.path_version() || sign_ != sign) {
+    const Model& model = equilibrium_.model();
+    const FullPath full = full_path(model, equilibrium_.path(lambda));
+    stresses_ = evaluator_.path_stresses(model, full.at_zero, full.per_lambda, sign);
+    valid_ = true;
+    version_ = equilibrium_.path_version();
+    sign_ = sign;
+  }
+  return stresses_;
+}
+
+PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
+                        const PathStresses& stresses, double from, double to) {
   const double sign = to < from ? -1.0 : 1.0;  // search in s = sign * lambda, increasing
   const double s_from = sign * from, s_to = sign * to;
-  const FullPath full = full_path(model, path);
-  const PathStresses stresses = evaluator.path_stresses(model, full.at_zero, full.per_lambda, sign);
   const parallel::Range mine = parallel::share(model.lattice.bond_count());
   std::vector<double> crossing(mine.last - mine.first, std::numeric_limits<double>::infinity());
   // Each thread's block keeps its own earliest crossing; a bond skipped there cannot cross
@@ -59,7 +77,10 @@ PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
 }
 
 double BreakSource::propose(const AffinePath& path, double from, double to) {
-  proposed_ = next_break(equilibrium_.model(), evaluator_, path, from, to);
+  const bool current = stresses_ && equilibrium_.path_at_hand() && &path == &equilibrium_.path(from);
+  proposed_ = current ? next_break(equilibrium_.model(), evaluator_,
+                                   stresses_->current(from, to < from ? -1.0 : 1.0), from, to)
+                      : next_break(equilibrium_.model(), evaluator_, path, from, to);
   return proposed_.lambda;
 }
 

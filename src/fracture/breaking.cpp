@@ -27,6 +27,7 @@ void Breaking::break_group(const std::vector<CriticalBond>& group, double lambda
 
 void Breaking::cascade(double lambda, std::int64_t cascade_id, bool may_stop) {
   for (;;) {
+    if (may_break_ && !may_break_(lambda)) return;
     const std::vector<CriticalBond> group =
         evaluator_.critical_group(equilibrium_.model(), equilibrium_.displacement(lambda), 1.0);
     if (group.empty()) return;

@@ -84,6 +84,7 @@ const AffinePath& EquilibriumState::path(double lambda) {
   if (!path_valid_) {
     path_ = holding_singular(lambda, [&] { return solver_.checked_affine_path(lambda); });
     path_valid_ = true;
+    ++path_version_;
   }
   return path_;
 }
@@ -100,6 +101,7 @@ void EquilibriumState::resolve(double lambda) {
     // for the path.
     path_ = holding_singular(lambda, [&] { return solver_.checked_affine_path(lambda); });
     path_valid_ = true;
+    ++path_version_;
     state_ = path_.at(lambda);
   } else {
     state_ = holding_singular(lambda, [&] { return solver_.checked_solve(lambda); });

@@ -177,9 +177,19 @@ void FractureRun::fixed_steps() {
 
 // Breaks first, then contact switches: on a tie the break is taken.
 void FractureRun::event_driven() {
-  BreakSource breaks(equilibrium_, evaluator_, breaking_);
+  PathStressCache stresses(equilibrium_, evaluator_);
+  BreakSource breaks(equilibrium_, evaluator_, breaking_, &stresses);
   PairSwitchSource switches(equilibrium_, settling_, breaking_);
   equilibrium_.want_paths(true);
+  // After a change the new path is at hand, and the crossing search reads its stresses
+  // next: the cascade's screen reads them first (FailureEvaluator::may_fail_at), and the
+  // exact search runs only where a bond comes within 1e-9 of f = 1. The same events bit
+  // for bit, for a fraction of a sweep where nothing breaks.
+  const double sign = schedule_.total < 0 ? -1.0 : 1.0;  // the searches' direction
+  breaking_.screen([&](double lambda) {
+    return !equilibrium_.path_at_hand() ||
+           evaluator_.may_fail_at(model_, stresses.current(lambda, sign), sign * lambda);
+  });
   breaking_.between_groups(
       [&](double lambda, std::int64_t cascade) { between_events(lambda, 0, &switches, cascade); });
   double from = 0;
@@ -203,6 +213,7 @@ void FractureRun::event_driven() {
         if (lambda != schedule_.total) between_events(lambda, 0, &switches);
       });
   breaking_.between_groups(nullptr);
+  breaking_.screen(nullptr);
   snapshots_.take_until(schedule_.total, true, [&](double at) { take_snapshot(at); });
 }
 

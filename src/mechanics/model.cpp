@@ -57,11 +57,17 @@ void Model::add_bond_force(const Vector& displacement, std::int64_t b, Vector& f
   }
 }
 
-// On threads, in two passes: every bond's tension (each bond on its own), then each
-// node's sum over its bonds in bond order (node_bonds()), the same terms in the same order
-// as add_bond_force over all bonds: the same numbers on any number of threads.
+// On one thread, add_bond_force over all bonds. On more, in two passes: every bond's
+// tension (each bond on its own), then each node's sum over its bonds in bond order
+// (node_bonds()), the same terms in the same order: the same numbers on any number of
+// threads.
 Vector Model::internal_force(const Vector& displacement) const {
   const std::int64_t bonds = lattice.bond_count();
+  if (threads::used(lattice.node_count(), 2048) == 1) {
+    Vector force = Vector::Zero(dofs_.dof_count());
+    for (std::int64_t b = 0; b < bonds; ++b) add_bond_force(displacement, b, force);
+    return force;
+  }
   std::vector<Vec3> tension(bonds);
   std::vector<std::uint8_t> carries(bonds, 0);
   threads::for_blocks(bonds, 4096, [&](std::int64_t first, std::int64_t last) {

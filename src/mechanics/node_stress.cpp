@@ -66,25 +66,60 @@ struct DyadSums {
 // The fewest bonds or nodes worth a thread of their own.
 constexpr std::int64_t bond_grain = 4096, node_grain = 2048;
 
-// Sums the dyads of every intact bond into each field, in two threaded passes: the bonds'
-// tensions (each bond on its own), then each node's sum over its bonds in bond order
-// (Model::node_bonds), which adds the same terms in the same order as one loop over the
-// bonds adding to both ends: the same numbers on any number of threads. In 2-D only the
-// x-z block is summed: the y row and column stay zero.
+// Bond b's arm at its end n: on a random lattice from the node to the facet's centroid
+// (t acts on i, -t on j), on a regular one the branch d0 for both ends.
+Vec3 arm_at(const Lattice& lattice, std::int64_t b, std::int64_t n, bool end_j) {
+  if (!lattice.is_random()) return lattice.bond_direction[b] * lattice.bond_length[b];
+  const Vec3& centroid = lattice.bond_facet_centroid[b];
+  return end_j ? Vec3(lattice.positions[n] - centroid) : Vec3(centroid - lattice.positions[n]);
+}
+
+// Adds a bond's tension t at its end n to a field's sums.
+void add_at_end(bool plane, DyadSums& field, std::int64_t n, const Vec3& arm, const Vec3& t,
+                bool end_j) {
+  add_dyad(plane, field.sum[n], arm, t);
+  if (field.bond_force.empty()) return;
+  if (end_j) {
+    field.bond_force[n] -= t;
+  } else {
+    field.bond_force[n] += t;
+  }
+}
+
+Vec3 tension_of(const Model& model, std::int64_t b, const DyadSums& field) {
+  const Vec3 du = field.state ? model.bond_displacement(field.displacement, b)
+                              : model.relative_motion(field.displacement, b);
+  return model.bond_law().tension(model.springs(b), PairState::intact, du);
+}
+
+// Sums the dyads of every intact bond into each field. In 2-D only the x-z block is
+// summed: the y row and column stay zero. On one thread: one loop over the bonds, each
+// added to its two ends. On more: the bonds' tensions (each bond on its own), then each
+// node's sum over its bonds in bond order (Model::node_bonds), which adds the same terms
+// in the same order: the same numbers on any number of threads.
 void sum_dyads(const Model& model, std::initializer_list<DyadSums*> fields) {
   const Lattice& lattice = model.lattice;
   const bool plane = lattice.dim == 2;
   const std::int64_t bonds = lattice.bond_count();
+  if (threads::used(lattice.node_count(), node_grain) == 1) {
+    for (std::int64_t b = 0; b < bonds; ++b) {
+      if (!model.intact(b)) continue;
+      const Bond& bond = lattice.bonds[b];
+      const Vec3 arm_i = arm_at(lattice, b, bond.i, false), arm_j = arm_at(lattice, b, bond.j, true);
+      for (DyadSums* field : fields) {
+        const Vec3 t = tension_of(model, b, *field);
+        add_at_end(plane, *field, bond.i, arm_i, t, false);
+        add_at_end(plane, *field, bond.j, arm_j, t, true);
+      }
+    }
+    return;
+  }
   std::vector<std::vector<Vec3>> tension(fields.size(), std::vector<Vec3>(bonds));
   threads::for_blocks(bonds, bond_grain, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t b = first; b < last; ++b) {
       if (!model.intact(b)) continue;
       std::size_t f = 0;
-      for (const DyadSums* field : fields) {
-        const Vec3 du = field->state ? model.bond_displacement(field->displacement, b)
-                                     : model.relative_motion(field->displacement, b);
-        tension[f++][b] = model.bond_law().tension(model.springs(b), PairState::intact, du);
-      }
+      for (const DyadSums* field : fields) tension[f++][b] = tension_of(model, b, *field);
     }
   });
   const NodeBonds& index = model.node_bonds();
@@ -94,27 +129,9 @@ void sum_dyads(const Model& model, std::initializer_list<DyadSums*> fields) {
         const std::int64_t b = index.entries[k] / 2;
         if (!model.intact(b)) continue;
         const bool end_j = index.entries[k] % 2 == 1;
-        // Random: t acts on i, -t on j, each node's arm reaching to the facet's centroid.
-        // Regular: the branch form, d0 for both ends.
-        Vec3 arm;
-        if (lattice.is_random()) {
-          const Vec3& centroid = lattice.bond_facet_centroid[b];
-          arm = end_j ? Vec3(lattice.positions[n] - centroid) : Vec3(centroid - lattice.positions[n]);
-        } else {
-          arm = lattice.bond_direction[b] * lattice.bond_length[b];
-        }
+        const Vec3 arm = arm_at(lattice, b, n, end_j);
         std::size_t f = 0;
-        for (DyadSums* field : fields) {
-          const Vec3& t = tension[f++][b];
-          add_dyad(plane, field->sum[n], arm, t);
-          if (!field->bond_force.empty()) {
-            if (end_j) {
-              field->bond_force[n] -= t;
-            } else {
-              field->bond_force[n] += t;
-            }
-          }
-        }
+        for (DyadSums* field : fields) add_at_end(plane, *field, n, arm, tension[f++][b], end_j);
       }
     }
   });

@@ -23,6 +23,8 @@ void set_count(int threads);
 // thousand bonds' work), four blocks per thread, each block taken by the next free
 // thread. On the calling thread alone, as one block, when that is one thread. An
 // exception thrown by a block is rethrown here.
+// The threads for_blocks(items, grain, ...) runs on.
+int used(std::int64_t items, std::int64_t grain);
 void for_blocks(std::int64_t items, std::int64_t grain,
                 const std::function<void(std::int64_t first, std::int64_t last)>& body);
 

@@ -68,6 +68,13 @@ class FailureEvaluator {
   // may be returned as +infinity (a bond that cannot reach 1 by then is not searched).
   double first_crossing(const Model& model, std::int64_t b, const PathStresses& path, double from,
                         double to, double needed_until) const;
+  // Whether some intact bond may have f >= 1 at s on the path: f from the path's node
+  // stresses at s is at least 1 - screen_margin. They differ from the stresses of the
+  // state at that lambda (node_stresses) only by rounding, some 1e-13 of f, so every bond
+  // that critical_group() finds at f >= 1 there passes; false means it finds none. Always
+  // true on the strain reading, whose exact check costs no more.
+  static constexpr double screen_margin = 1e-9;
+  bool may_fail_at(const Model& model, const PathStresses& path, double s) const;
 
   const FailureCriterion& criterion() const { return *criterion_; }
   const CriterionParameters& parameters() const { return criterion_->parameters(); }
@@ -85,6 +92,9 @@ class FailureEvaluator {
   BondStrength strength_of(const Model& model, std::int64_t bond) const {
     return {model.bond_sigma0[bond], model.bond_tau0[bond]};
   }
+  // Bond b's normal and shear stress along the path, affine in s (the resolved-tensor and
+  // strain readings).
+  AffineBondStress affine_stress(const Model& model, std::int64_t b, const PathStresses& path) const;
   // A quantity that grows with f and is cheap to compute (no square root), and the
   // relative tolerance in it that matches tie_tolerance in f.
   double rank(const Model& model, const Vector& displacement, std::int64_t bond,

@@ -25,11 +25,35 @@ struct PathCrossing {
 // The first bonds to reach f = 1 after `from` and no later than `to`.
 PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
                         const AffinePath& path, double from, double to);
+// The same on stresses already computed for the path (PathStressCache).
+PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
+                        const PathStresses& stresses, double from, double to);
+
+// The stresses along the equilibrium's current path, computed once per path: the
+// cascade's screen after a change (Breaking::screen) and the crossing search that follows
+// read the same ones.
+class PathStressCache {
+ public:
+  PathStressCache(EquilibriumState& equilibrium, const FailureEvaluator& evaluator)
+      : equilibrium_(equilibrium), evaluator_(evaluator) {}
+  // For the current path (at hand: equilibrium.path_at_hand()), searched in direction sign.
+  const PathStresses& current(double lambda, double sign);
+
+ private:
+  EquilibriumState& equilibrium_;
+  const FailureEvaluator& evaluator_;
+  bool valid_ = false;
+  std::uint64_t version_ = 0;
+  double sign_ = 0;
+  PathStresses stresses_;
+};
 
 class BreakSource final : public EventSource {
  public:
-  BreakSource(EquilibriumState& equilibrium, const FailureEvaluator& evaluator, Breaking& breaking)
-      : equilibrium_(equilibrium), evaluator_(evaluator), breaking_(breaking) {}
+  // With a cache, the search on the equilibrium's current path reads its stresses there.
+  BreakSource(EquilibriumState& equilibrium, const FailureEvaluator& evaluator, Breaking& breaking,
+              PathStressCache* stresses = nullptr)
+      : equilibrium_(equilibrium), evaluator_(evaluator), breaking_(breaking), stresses_(stresses) {}
   double propose(const AffinePath& path, double from, double to) override;
   // The tied bonds break as a group (largest f first is not needed: their f are equal
   // within rounding), then the cascade runs at that lambda with the same cascade id.
@@ -39,6 +63,7 @@ class BreakSource final : public EventSource {
   EquilibriumState& equilibrium_;
   const FailureEvaluator& evaluator_;
   Breaking& breaking_;
+  PathStressCache* stresses_;
   PathCrossing proposed_;
 };
 

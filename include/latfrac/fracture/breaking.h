@@ -43,6 +43,9 @@ class Breaking {
   void between_groups(std::function<void(double lambda, std::int64_t cascade_id)> hook) {
     between_groups_ = std::move(hook);
   }
+  // A cheap test run before each search of the cascade: when it says no bond can have
+  // f >= 1 at lambda, the cascade ends without the exact search (which would find none).
+  void screen(std::function<bool(double lambda)> may_break) { may_break_ = std::move(may_break); }
 
   std::int64_t breaks() const { return breaks_; }
   std::int64_t next_cascade() const { return next_cascade_; }
@@ -61,6 +64,7 @@ class Breaking {
   std::int64_t breaks_ = 0;
   std::int64_t next_cascade_ = 1;
   std::function<void(double, std::int64_t)> between_groups_;
+  std::function<bool(double)> may_break_;
 };
 
 }  // namespace latfrac

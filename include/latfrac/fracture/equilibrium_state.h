@@ -52,6 +52,10 @@ class EquilibriumState {
   Vector free_state(double lambda);
   // The affine path of the current stiffness (solved, residual checked, when stale).
   const AffinePath& path(double lambda);
+  // Whether path() has the current path at hand (no solve), and which one it is: the
+  // count of paths solved so far.
+  bool path_at_hand() const { return path_valid_; }
+  std::uint64_t path_version() const { return path_version_; }
 
   // Puts each pair into its new state (in order; the solver updates its factor), holds
   // every part that a pair which stopped connecting its nodes cut loose, at `before` (the
@@ -110,6 +114,7 @@ class EquilibriumState {
   std::optional<RelaxationSolver> relaxation_;  // set when the scene asks for relaxation
   AffinePath path_;
   bool path_valid_ = false;  // path_ describes the current model
+  std::uint64_t path_version_ = 0;
   bool paths_wanted_ = false;
   Vector state_;             // free displacement at state_lambda_ (also the next warm start)
   double state_lambda_ = 0;
