@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config git
+  build-essential cmake pkg-config git   # (GCC brings OpenMP: omp.h and libgomp, the bond sweeps' threads)
   libsundials-dev            # KINSOL (Newton) and CVODE
   libsuitesparse-dev         # CHOLMOD sparse Cholesky (with METIS); UMFPACK LU (friction)
   libopenblas0-pthread       # fast BLAS for CHOLMOD's supernodal kernels

@@ -68,7 +68,7 @@ TEST_CASE("Relaxation reaches the direct solver's equilibrium", "[relaxation]") 
   Model model = build_model(scene);
   const double lambda = 1e-4;
   const Vector direct = direct_solution(model, scene.solver, lambda);
-  const RelaxationSolver relaxation(model, scene.solver);
+  const RelaxationSolver relaxation(scene.solver);
   Vector u = Vector::Zero(model.dofs().free_count);
   const RelaxationReport report = relaxation.solve(model, lambda, u);
   INFO("dim " << dim << ": " << report.sweeps << " sweeps, residual " << report.relative_residual);
@@ -89,7 +89,7 @@ TEST_CASE("The general sweep (any bond law) reaches the same equilibrium", "[rel
   const Vector direct = direct_solution(model, scene.solver, lambda);
   flag_nonlinear(model);
   Vector u = Vector::Zero(model.dofs().free_count);
-  const RelaxationReport report = RelaxationSolver(model, scene.solver).solve(model, lambda, u);
+  const RelaxationReport report = RelaxationSolver(scene.solver).solve(model, lambda, u);
   CHECK(report.converged);
   CHECK(relative_residual(model, u, lambda) <= 1e-12);
   CHECK(relative_difference(u, direct) < 1e-6);
@@ -118,7 +118,7 @@ TEST_CASE("Relaxation with broken bonds and active contact springs", "[relaxatio
   const double lambda = -2e-4;
   const Vector direct = direct_solution(model, scene.solver, lambda);
   Vector u = Vector::Zero(model.dofs().free_count);
-  const RelaxationReport report = RelaxationSolver(model, scene.solver).solve(model, lambda, u);
+  const RelaxationReport report = RelaxationSolver(scene.solver).solve(model, lambda, u);
   CHECK(report.converged);
   CHECK(relative_residual(model, u, lambda) <= 1e-12);
   CHECK(relative_difference(u, direct) < 1e-6);
@@ -144,7 +144,7 @@ TEST_CASE("A node without bonds stays put and the report says not converged", "[
     if (general) flag_nonlinear(model);
     Vector u = Vector::Zero(model.dofs().free_count);
     RelaxationReport report;
-    CHECK_NOTHROW(report = RelaxationSolver(model, scene.solver).solve(model, 0.0, u));
+    CHECK_NOTHROW(report = RelaxationSolver(scene.solver).solve(model, 0.0, u));
     CHECK_FALSE(report.converged);
     CHECK(report.sweeps == 50);
     CHECK(std::isfinite(report.relative_residual));
@@ -159,7 +159,7 @@ TEST_CASE("Relaxation from the exact solution stops at the first check", "[relax
   const double lambda = 2e-4;
   Vector u = direct_solution(model, scene.solver, lambda);
   const Vector exact = u;
-  const RelaxationReport report = RelaxationSolver(model, scene.solver).solve(model, lambda, u);
+  const RelaxationReport report = RelaxationSolver(scene.solver).solve(model, lambda, u);
   CHECK(report.converged);
   CHECK(report.sweeps <= RelaxationSolver::check_interval);
   CHECK(relative_difference(u, exact) < 1e-6);
@@ -175,7 +175,7 @@ TEST_CASE("A NaN in the state is never reported as converged", "[relaxation]") {
   Vector u = direct_solution(model, scene.solver, lambda);
   if (general) flag_nonlinear(model);
   u[u.size() / 2] = std::nan("");
-  const RelaxationReport report = RelaxationSolver(model, scene.solver).solve(model, lambda, u);
+  const RelaxationReport report = RelaxationSolver(scene.solver).solve(model, lambda, u);
   INFO((general ? "general" : "linear") << " sweep: residual " << report.relative_residual);
   CHECK_FALSE(report.converged);
   CHECK_FALSE(std::isfinite(report.relative_residual));
@@ -187,7 +187,7 @@ TEST_CASE("The sweep cap stops relaxation without an exception", "[relaxation]")
   Model model = build_model(scene);
   Vector u = Vector::Zero(model.dofs().free_count);
   RelaxationReport report;
-  CHECK_NOTHROW(report = RelaxationSolver(model, scene.solver).solve(model, 1e-4, u));
+  CHECK_NOTHROW(report = RelaxationSolver(scene.solver).solve(model, 1e-4, u));
   CHECK_FALSE(report.converged);
   CHECK(report.sweeps == 3);
   CHECK(report.relative_residual > scene.solver.relaxation_tolerance);
@@ -204,7 +204,7 @@ TEST_CASE("Plain Gauss-Seidel converges, and over-relaxation needs fewer sweeps"
     SolverOptions options = scene.solver;
     options.relaxation_omega = omega;
     Vector u = Vector::Zero(model.dofs().free_count);
-    const RelaxationReport report = RelaxationSolver(model, options).solve(model, lambda, u);
+    const RelaxationReport report = RelaxationSolver(options).solve(model, lambda, u);
     INFO("omega " << omega << ": " << report.sweeps << " sweeps");
     CHECK(report.converged);
     CHECK(relative_residual(model, u, lambda) <= options.relaxation_tolerance);
@@ -223,7 +223,7 @@ TEST_CASE("Relaxed lithostatic column: sigma_zz = -rho g depth at mid-body", "[r
   scene.solver.relaxation_tolerance = 1e-9;
   Model model = build_model(scene);
   Vector u = Vector::Zero(model.dofs().free_count);
-  const RelaxationReport report = RelaxationSolver(model, scene.solver).solve(model, 0.0, u);
+  const RelaxationReport report = RelaxationSolver(scene.solver).solve(model, 0.0, u);
   INFO(report.sweeps << " sweeps");
   REQUIRE(report.converged);
   const testing::LithostaticError error =
@@ -238,6 +238,6 @@ TEST_CASE("Relaxation rejects omega outside (0, 2)", "[relaxation]") {
   Scene scene = testing::box_scene(2, 1.0, {6.0, 0, 4.0}, true);
   Model model = build_model(scene);
   scene.solver.relaxation_omega = 2.0;
-  CHECK_THROWS_WITH(RelaxationSolver(model, scene.solver),
+  CHECK_THROWS_WITH(RelaxationSolver(scene.solver),
                     Catch::Contains("0 < relaxation_omega < 2"));
 }

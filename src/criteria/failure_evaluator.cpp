@@ -130,7 +130,7 @@ std::vector<CriticalBond> FailureEvaluator::critical_group(const Model& model,
   // Every intact bond's rank, on threads (each bond on its own); 0 for the others.
   const std::int64_t bonds = model.lattice.bond_count();
   std::vector<double> ranks(bonds, 0.0);
-  threads::for_blocks(bonds, 4096, [&](std::int64_t first, std::int64_t last) {
+  threads::for_blocks(bonds, threads::bond_grain, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t b = first; b < last; ++b)
       if (model.intact(b)) ranks[b] = rank(model, displacement, b, node_stress);
   });
@@ -193,7 +193,7 @@ bool FailureEvaluator::may_fail_at(const Model& model, const PathStresses& path,
     node_stress[k] = path.stress_at_zero[k] + s * path.stress_per_unit[k];
   const Vector none;
   std::atomic<bool> found = false;
-  threads::for_blocks(model.lattice.bond_count(), 4096, [&](std::int64_t first, std::int64_t last) {
+  threads::for_blocks(model.lattice.bond_count(), threads::bond_grain, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t b = first; b < last && !found.load(std::memory_order_relaxed); ++b) {
       if (!model.intact(b)) continue;
       // NaN passes too: the exact check decides.

@@ -47,7 +47,7 @@ PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
   // Each thread's block keeps its own earliest crossing; a bond skipped there cannot cross
   // before it (nor, then, in the tie window of the earliest of all), so the event is the
   // same on any number of threads.
-  threads::for_blocks(mine.last - mine.first, 4096, [&](std::int64_t begin, std::int64_t end) {
+  threads::for_blocks(mine.last - mine.first, threads::bond_grain, [&](std::int64_t begin, std::int64_t end) {
     double block_first = std::numeric_limits<double>::infinity();
     for (std::int64_t b = mine.first + begin; b < mine.first + end; ++b) {
       if (!model.intact(b)) continue;

@@ -8,7 +8,7 @@ namespace latfrac {
 EquilibriumState::EquilibriumState(Model& model, EquilibriumSolver& solver,
                                    const SolverOptions& options)
     : model_(model), solver_(solver), fragments_detector_(model) {
-  if (options.method == EquilibriumMethod::relaxation) relaxation_.emplace(model, options);
+  if (options.method == EquilibriumMethod::relaxation) relaxation_.emplace(options);
 }
 
 // The safety net behind the support check: a piece held only by frictionless contacts

@@ -63,26 +63,25 @@ void Model::add_bond_force(const Vector& displacement, std::int64_t b, Vector& f
 // threads.
 Vector Model::internal_force(const Vector& displacement) const {
   const std::int64_t bonds = lattice.bond_count();
-  if (threads::used(lattice.node_count(), 2048) == 1) {
+  if (threads::used(lattice.node_count(), threads::node_grain) == 1) {
     Vector force = Vector::Zero(dofs_.dof_count());
     for (std::int64_t b = 0; b < bonds; ++b) add_bond_force(displacement, b, force);
     return force;
   }
   std::vector<Vec3> tension(bonds);
   std::vector<std::uint8_t> carries(bonds, 0);
-  threads::for_blocks(bonds, 4096, [&](std::int64_t first, std::int64_t last) {
+  threads::for_blocks(bonds, threads::bond_grain, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t b = first; b < last; ++b) {
-      if (states_[b] == PairState::open) continue;
-      const InteractionLaw* law = law_of(b);
-      if (!law) continue;
-      tension[b] = law->tension(springs(b), states_[b], bond_displacement(displacement, b));
+      // The bonds add_bond_force adds: not open, with a law.
+      if (states_[b] == PairState::open || !law_of(b)) continue;
+      tension[b] = bond_tension(displacement, b);
       carries[b] = 1;
     }
   });
   const int d = dim();
   Vector force = Vector::Zero(dofs_.dof_count());
   const NodeBonds& index = node_bonds();
-  threads::for_blocks(lattice.node_count(), 2048, [&](std::int64_t first, std::int64_t last) {
+  threads::for_blocks(lattice.node_count(), threads::node_grain, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t n = first; n < last; ++n) {
       for (std::int64_t k = index.start[n]; k < index.start[n + 1]; ++k) {
         const std::int64_t b = index.entries[k] / 2;

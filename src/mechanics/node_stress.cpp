@@ -63,9 +63,6 @@ struct DyadSums {
   std::vector<Vec3> bond_force;
 };
 
-// The fewest bonds or nodes worth a thread of their own.
-constexpr std::int64_t bond_grain = 4096, node_grain = 2048;
-
 // Bond b's arm at its end n: on a random lattice from the node to the facet's centroid
 // (t acts on i, -t on j), on a regular one the branch d0 for both ends.
 Vec3 arm_at(const Lattice& lattice, std::int64_t b, std::int64_t n, bool end_j) {
@@ -101,7 +98,7 @@ void sum_dyads(const Model& model, std::initializer_list<DyadSums*> fields) {
   const Lattice& lattice = model.lattice;
   const bool plane = lattice.dim == 2;
   const std::int64_t bonds = lattice.bond_count();
-  if (threads::used(lattice.node_count(), node_grain) == 1) {
+  if (threads::used(lattice.node_count(), threads::node_grain) == 1) {
     for (std::int64_t b = 0; b < bonds; ++b) {
       if (!model.intact(b)) continue;
       const Bond& bond = lattice.bonds[b];
@@ -115,7 +112,7 @@ void sum_dyads(const Model& model, std::initializer_list<DyadSums*> fields) {
     return;
   }
   std::vector<std::vector<Vec3>> tension(fields.size(), std::vector<Vec3>(bonds));
-  threads::for_blocks(bonds, bond_grain, [&](std::int64_t first, std::int64_t last) {
+  threads::for_blocks(bonds, threads::bond_grain, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t b = first; b < last; ++b) {
       if (!model.intact(b)) continue;
       std::size_t f = 0;
@@ -123,7 +120,7 @@ void sum_dyads(const Model& model, std::initializer_list<DyadSums*> fields) {
     }
   });
   const NodeBonds& index = model.node_bonds();
-  threads::for_blocks(lattice.node_count(), node_grain, [&](std::int64_t first, std::int64_t last) {
+  threads::for_blocks(lattice.node_count(), threads::node_grain, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t n = first; n < last; ++n) {
       for (std::int64_t k = index.start[n]; k < index.start[n + 1]; ++k) {
         const std::int64_t b = index.entries[k] / 2;

@@ -251,7 +251,7 @@ RelaxationReport iterate(const Nodes& nodes, Vector& u, double load, double tole
 
 }  // namespace
 
-RelaxationSolver::RelaxationSolver(const Model& model, const SolverOptions& options)
+RelaxationSolver::RelaxationSolver(const SolverOptions& options)
     : omega_(options.relaxation_omega),
       tolerance_(options.relaxation_tolerance),
       max_sweeps_(options.relaxation_max_sweeps) {
@@ -267,17 +267,10 @@ RelaxationSolver::RelaxationSolver(const Model& model, const SolverOptions& opti
     throw InputError("relaxation_max_sweeps = " + std::to_string(max_sweeps_) +
                      ": allowed: relaxation_max_sweeps >= 0");
   }
-  node_bonds_ = node_bonds(model.lattice);
 }
 
 RelaxationReport RelaxationSolver::solve(const Model& model, double lambda,
                                          Vector& free_displacement) const {
-  const Lattice& lattice = model.lattice;
-  if (node_bonds_.node_count() != lattice.node_count() ||
-      static_cast<std::int64_t>(node_bonds_.entries.size()) != 2 * lattice.bond_count()) {
-    throw Error(
-        "RelaxationSolver::solve: the model's lattice is not the one the solver was built for");
-  }
   const std::int64_t free_count = model.dofs().free_count;
   assert(free_displacement.size() == free_count);
   const double load = max_abs(model.residual(Vector::Zero(free_count), lambda));
@@ -291,13 +284,13 @@ RelaxationReport RelaxationSolver::solve(const Model& model, double lambda,
   Vector u = model.full_displacement(free_displacement, lambda);
   RelaxationReport report;
   if (model.is_linear() && model.dim() == 2) {
-    const LinearNodes<2> nodes(model, node_bonds_, u, omega_);
+    const LinearNodes<2> nodes(model, model.node_bonds(), u, omega_);
     report = iterate(nodes, u, load, tolerance_, max_sweeps_, check_interval);
   } else if (model.is_linear()) {
-    const LinearNodes<3> nodes(model, node_bonds_, u, omega_);
+    const LinearNodes<3> nodes(model, model.node_bonds(), u, omega_);
     report = iterate(nodes, u, load, tolerance_, max_sweeps_, check_interval);
   } else {
-    const GeneralNodes nodes(model, node_bonds_, omega_);
+    const GeneralNodes nodes(model, model.node_bonds(), omega_);
     report = iterate(nodes, u, load, tolerance_, max_sweeps_, check_interval);
   }
 

@@ -34,9 +34,9 @@ class RelaxationSolver {
   // Sweeps between two checks of the global residual (a check costs about one sweep).
   static constexpr long check_interval = 10;
 
-  // Records each node's bonds. Throws InputError unless 0 < relaxation_omega < 2,
-  // relaxation_tolerance > 0 and relaxation_max_sweeps >= 0.
-  RelaxationSolver(const Model& model, const SolverOptions& options);
+  // Throws InputError unless 0 < relaxation_omega < 2, relaxation_tolerance > 0 and
+  // relaxation_max_sweeps >= 0. Each node's bonds come from Model::node_bonds().
+  explicit RelaxationSolver(const SolverOptions& options);
 
   // Over-relaxed nodal Gauss-Seidel from the given free displacement (updated in place)
   // at extension strain lambda, until the relative residual <= relaxation_tolerance or
@@ -48,7 +48,6 @@ class RelaxationSolver {
   double omega_;
   double tolerance_;
   long max_sweeps_;
-  NodeBonds node_bonds_;  // node_bonds(the model's lattice)
 };
 
 }  // namespace latfrac
