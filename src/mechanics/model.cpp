@@ -42,19 +42,34 @@ const NodeBonds& Model::node_bonds() const {
   return node_bonds_;
 }
 
-// An open pair carries nothing (pair_state.h), so only the others are evaluated.
-void Model::add_bond_force(const Vector& displacement, std::int64_t b, Vector& force) const {
-  if (states_[b] == PairState::open) return;
-  const InteractionLaw* law = law_of(b);
-  if (!law) return;
-  const Bond& bond = lattice.bonds[b];
-  const Vec3 t = law->tension(springs(b), states_[b], bond_displacement(displacement, b));
-  const int d = dim();
+namespace {
+
+// Adds a bond's tension t to the force on one of its ends: +t on end j, -t on end i (in
+// 2-D the x and z components).
+void add_at_end(Vector& force, int d, std::int64_t node, const Vec3& t, bool end_j) {
   for (int c = 0; c < d; ++c) {
     const double component = t[d == 2 ? 2 * c : c];
-    force[bond.j * d + c] += component;
-    force[bond.i * d + c] -= component;
+    if (end_j) {
+      force[node * d + c] += component;
+    } else {
+      force[node * d + c] -= component;
+    }
   }
+}
+
+}  // namespace
+
+// An open pair carries nothing (pair_state.h), and a bond without a law nothing either.
+bool Model::carries_force(std::int64_t b) const {
+  return states_[b] != PairState::open && law_of(b) != nullptr;
+}
+
+void Model::add_bond_force(const Vector& displacement, std::int64_t b, Vector& force) const {
+  if (!carries_force(b)) return;
+  const Bond& bond = lattice.bonds[b];
+  const Vec3 t = bond_tension(displacement, b);
+  add_at_end(force, dim(), bond.j, t, true);
+  add_at_end(force, dim(), bond.i, t, false);
 }
 
 // On one thread, add_bond_force over all bonds. On more, in two passes: every bond's
@@ -72,8 +87,7 @@ Vector Model::internal_force(const Vector& displacement) const {
   std::vector<std::uint8_t> carries(bonds, 0);
   threads::for_blocks(bonds, threads::bond_grain, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t b = first; b < last; ++b) {
-      // The bonds add_bond_force adds: not open, with a law.
-      if (states_[b] == PairState::open || !law_of(b)) continue;
+      if (!carries_force(b)) continue;
       tension[b] = bond_tension(displacement, b);
       carries[b] = 1;
     }
@@ -86,15 +100,7 @@ Vector Model::internal_force(const Vector& displacement) const {
       for (std::int64_t k = index.start[n]; k < index.start[n + 1]; ++k) {
         const std::int64_t b = index.entries[k] / 2;
         if (!carries[b]) continue;
-        const bool end_j = index.entries[k] % 2 == 1;
-        for (int c = 0; c < d; ++c) {
-          const double component = tension[b][d == 2 ? 2 * c : c];
-          if (end_j) {
-            force[n * d + c] += component;
-          } else {
-            force[n * d + c] -= component;
-          }
-        }
+        add_at_end(force, d, n, tension[b], index.entries[k] % 2 == 1);
       }
     }
   });

@@ -120,6 +120,8 @@ class Model {
   // The lattice's node-to-bond index, built on the first call and again when the
   // lattice's bonds or nodes have changed in number. Call it outside threaded blocks.
   const NodeBonds& node_bonds() const;
+  // Whether bond b exerts a force: not an open pair, and with a law.
+  bool carries_force(std::int64_t b) const;
   // Adds bond b's force to `force`: +t on node j, -t on node i.
   void add_bond_force(const Vector& displacement, std::int64_t bond, Vector& force) const;
 
