@@ -161,20 +161,20 @@ bool BackwardSolve::build(const SimplicialFactor& f, int threads) {
       continue;
     }
     if (work[j] * 2 * threads <= in_subtrees) break;
-    // The columns that go to the top with j.
+    // The columns that go to the top with j (marked in `top` as they are found; unmarked
+    // again if the top would grow too big).
     added.clear();
     pending.assign(1, j);
-    std::vector<std::uint8_t>& seen = top;  // marked as they are added
     while (!pending.empty()) {
       const std::int64_t c = pending.back();
       pending.pop_back();
-      if (seen[c]) continue;
-      seen[c] = 1;
+      if (top[c]) continue;
+      top[c] = 1;
       added.push_back(c);
       for (int map = 0; map < 2; ++map) {
         const std::int64_t t = chain_top[map][c];
         for (int m = 0; m < chains_[map][t]; ++m)
-          if (!seen[t - m]) pending.push_back(t - m);
+          if (!top[t - m]) pending.push_back(t - m);
       }
     }
     std::int64_t added_entries = 0;
