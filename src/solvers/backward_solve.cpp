@@ -231,7 +231,6 @@ bool BackwardSolve::build(const SimplicialFactor& f, int threads) {
       if (i != -1 && i != piece_of[j]) return false;
     }
   }
-  top_share_ = static_cast<double>(in_top) / static_cast<double>(entries);
   ready_ = true;
   return true;
 }

@@ -31,7 +31,9 @@ struct SimplicialFactor {
 
 class BackwardSolve {
  public:
-  // Below this many factor entries the threads' start costs more than they save.
+  // Below this many factor entries CHOLMOD solves alone. Chosen, not measured: a solve
+  // there takes well under a millisecond, against a few microseconds to start the
+  // threads; the 2-D section at 500 m (838k entries) is far above.
   static constexpr std::int64_t least_entries = 50000;
 
   // Builds the schedule for the factor's pattern, split for `threads` threads. False (and
@@ -45,11 +47,6 @@ class BackwardSolve {
   void check_paths(const SimplicialFactor& factor, const std::vector<std::int64_t>& rows);
   // D L' X = Y in place for `columns` right-hand sides stored column after column.
   void solve(const SimplicialFactor& factor, double* y, std::int64_t columns) const;
-
-  // For benchmarks and tests: the share of the factor's entries done serially (the top),
-  // and the number of subtrees.
-  double top_share() const { return top_share_; }
-  std::size_t pieces() const { return pieces_.size(); }
 
  private:
   struct Piece {
@@ -66,7 +63,6 @@ class BackwardSolve {
   std::vector<Piece> pieces_;            // by entries, descending
   std::vector<std::int64_t> parent_;     // of the tree, -1 at a root
   std::vector<std::int64_t> count_;      // each column's entry count when built
-  double top_share_ = 0;
 };
 
 }  // namespace latfrac

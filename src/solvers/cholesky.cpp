@@ -351,11 +351,14 @@ void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
   auto* i = static_cast<std::int64_t*>(update_matrix->i);
   auto* x = static_cast<double*>(update_matrix->x);
   std::int64_t k = 0;
+  std::vector<std::int64_t> rows;  // in the factor's order, for the backward solve's check
   for (std::size_t j = 0; j < columns.size(); ++j) {
     p[j] = k;
     Column sorted;
-    for (const auto& [row, value] : columns[j])
+    for (const auto& [row, value] : columns[j]) {
       sorted.push_back({inverse_permutation_[row], value});
+      rows.push_back(inverse_permutation_[row]);
+    }
     std::sort(sorted.begin(), sorted.end());
     for (const auto& [row, value] : sorted) {
       i[k] = row;
@@ -374,9 +377,6 @@ void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
   }
   check(c, ok, "cholmod_l_updown");
   if (state_->backward.ready()) {
-    std::vector<std::int64_t> rows;
-    for (const Column& column : columns)
-      for (const auto& entry : column) rows.push_back(inverse_permutation_[entry.first]);
     state_->backward.check_paths(simplicial(*factor), rows);
     if (!state_->backward.ready()) state_->backward_stale = true;
   }
@@ -426,10 +426,9 @@ bool CholeskyFactor::solve_sparse(const std::vector<Column>& b, double* x) {
   if (f.is_super || f.is_ll || static_cast<std::int64_t>(inverse_permutation_.size()) != n)
     return false;
   if (b.empty()) return true;
-  const auto* start = static_cast<const std::int64_t*>(f.p);
-  const auto* count = static_cast<const std::int64_t*>(f.nz);
-  const auto* row = static_cast<const std::int64_t*>(f.i);
-  const auto* value = static_cast<const double*>(f.x);
+  const SimplicialFactor simple = simplicial(f);
+  const std::int64_t *start = simple.start, *count = simple.count, *row = simple.row;
+  const double* value = simple.value;
   const auto* perm = static_cast<const std::int64_t*>(f.Perm);
   // P b, then L y = P b over the reached columns only (those of all the right-hand sides:
   // one order serves each). In the simplicial LDL' form each column starts with its
@@ -460,7 +459,6 @@ bool CholeskyFactor::solve_sparse(const std::vector<Column>& b, double* x) {
   // D L' z = y over every column (the solution is dense): over the elimination tree's
   // subtrees on threads (backward_solve.h) where the factor is big enough, else CHOLMOD's
   // own simplicial solve; the same numbers either way. Then x = P' z.
-  const SimplicialFactor simple = simplicial(f);
   if (state_->backward_stale) {
     state_->backward.build(simple, threads::count());
     state_->backward_stale = false;
