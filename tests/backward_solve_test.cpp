@@ -3,12 +3,15 @@
 // own simplicial solve (what it gives on one thread) bit for bit, for one to six
 // right-hand sides (CHOLMOD groups chains of columns differently for four), and the
 // answer must solve the updated system: K' x = b with K' = K + c c'.
+// Also: the tree gives the forward solve's reach, the set of columns a few-entry right-hand
+// side changes.
 #include <catch2/catch.hpp>
 #include <cmath>
 
 #include "latfrac/base/threads.h"
 #include "latfrac/mechanics/stiffness.h"
 #include "latfrac/scene/model_builder.h"
+#include "backward_solve.h"
 #include "latfrac/solvers/cholesky.h"
 #include "scenes.h"
 
@@ -79,4 +82,61 @@ TEST_CASE("The threaded backward solve gives CHOLMOD's answer bit for bit", "[so
     for (const auto& [row, value] : b[static_cast<std::size_t>(c)]) r[row] -= value;
     CHECK(r.cwiseAbs().maxCoeff() <= 1e-7 * product(k, xc, true).maxCoeff());
   }
+}
+
+TEST_CASE("The elimination tree gives a forward solve's reach", "[solver]") {
+  // A made-up factor pattern of 7 columns (the diagonal first in each): the tree
+  // 0 -> 2, 1 -> 2, 2 -> 6, 3 -> 5, 4 -> 5, 5 -> 6, postordered, and each column's rows
+  // on its path to the root, as a factor's pattern has them.
+  std::vector<std::vector<std::int64_t>> pattern = {{0, 2, 6}, {1, 2}, {2, 6}, {3, 5},
+                                                    {4, 5, 6}, {5, 6}, {6}};
+  auto factor_of = [](const std::vector<std::vector<std::int64_t>>& columns,
+                      std::vector<std::int64_t>& start, std::vector<std::int64_t>& count,
+                      std::vector<std::int64_t>& row, std::vector<double>& value) {
+    start.clear();
+    count.clear();
+    row.clear();
+    for (const auto& c : columns) {
+      start.push_back(static_cast<std::int64_t>(row.size()));
+      count.push_back(static_cast<std::int64_t>(c.size()));
+      row.insert(row.end(), c.begin(), c.end());
+    }
+    value.assign(row.size(), 1.0);
+    return SimplicialFactor{static_cast<std::int64_t>(columns.size()), start.data(),
+                            count.data(), row.data(), value.data()};
+  };
+  std::vector<std::int64_t> start, count, row;
+  std::vector<double> value;
+  const SimplicialFactor f = factor_of(pattern, start, count, row, value);
+  BackwardSolve tree;
+  CHECK_FALSE(tree.build(f, 2));  // far below least_entries: no threads' schedule
+  REQUIRE(tree.tree_ready());
+  // The reach by its definition: every column reachable from the rows along L's graph
+  // (column j to the rows of its entries), found by growing the set until it stops.
+  auto closure = [&](std::vector<std::int64_t> rows) {
+    std::vector<char> in(7, 0);
+    for (auto r : rows) in[r] = 1;
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (std::int64_t j = 0; j < 7; ++j)
+        if (in[j])
+          for (auto i : pattern[j])
+            if (!in[i]) in[i] = grew = 1;
+    }
+    std::vector<std::int64_t> reached;
+    for (std::int64_t j = 0; j < 7; ++j)
+      if (in[j]) reached.push_back(j);
+    return reached;
+  };
+  for (const std::vector<std::int64_t>& rows :
+       {std::vector<std::int64_t>{1}, {3, 0}, {4}, {6}, {2, 2, 5}, {0, 1, 3, 4}}) {
+    CHECK(tree.reach(rows) == closure(rows));
+  }
+  CHECK(tree.reach({1}) == std::vector<std::int64_t>{1, 2, 6});  // by hand
+  // A pattern whose tree is not postordered (column 1's parent is 4, so 4's subtree
+  // {1, 3, 4} is not a column range): the tree does not give the reach.
+  pattern[1] = {1, 4};
+  const SimplicialFactor g = factor_of(pattern, start, count, row, value);
+  tree.build(g, 2);
+  CHECK_FALSE(tree.tree_ready());
 }

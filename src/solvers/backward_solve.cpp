@@ -90,10 +90,42 @@ inline void chain_solve(const SimplicialFactor& f, std::int64_t j, int s, double
 
 bool BackwardSolve::build(const SimplicialFactor& f, int threads) {
   ready_ = false;
+  tree_ready_ = false;
   pieces_.clear();
   const std::int64_t n = f.n;
+  // The tree: each column's parent is its first row below the diagonal (the smallest).
+  parent_.assign(n, -1);
+  count_.assign(f.count, f.count + n);
+  for (std::int64_t j = 0; j < n; ++j) {
+    std::int64_t first = -1;
+    for (std::int64_t p = f.start[j] + 1; p < f.start[j] + f.count[j]; ++p)
+      if (first < 0 || f.row[p] < first) first = f.row[p];
+    if (first >= 0 && first <= j) return false;
+    parent_[j] = first;
+  }
+  // Each subtree's entries, its columns and its lowest column (children come before
+  // their parent).
+  std::vector<std::int64_t> work(n, 0), size(n, 1), lowest(n);
   std::int64_t entries = 0;
-  for (std::int64_t j = 0; j < n; ++j) entries += f.count[j];
+  for (std::int64_t j = 0; j < n; ++j) lowest[j] = j;
+  for (std::int64_t j = 0; j < n; ++j) {
+    entries += f.count[j];
+    work[j] += f.count[j];
+    if (parent_[j] >= 0) {
+      work[parent_[j]] += work[j];
+      size[parent_[j]] += size[j];
+      lowest[parent_[j]] = std::min(lowest[parent_[j]], lowest[j]);
+    }
+  }
+  // Postordered, every subtree is the column range lowest..root; then i > j is an
+  // ancestor of j exactly when lowest[i] <= j. Each entry L(i, j) must be one.
+  // (The threads' schedule below does not need it: it checks its own pieces.)
+  tree_ready_ = true;
+  for (std::int64_t j = 0; j < n && tree_ready_; ++j) {
+    if (size[j] != j - lowest[j] + 1) tree_ready_ = false;
+    for (std::int64_t p = f.start[j] + 1; p < f.start[j] + f.count[j]; ++p)
+      if (lowest[f.row[p]] > j) tree_ready_ = false;
+  }
   if (threads < 2 || entries < least_entries) return false;
   // The chains, as CHOLMOD finds them, for up to three right-hand sides (map 0) and for
   // four (map 1); each column's chain (its highest column) in either.
@@ -106,26 +138,6 @@ bool BackwardSolve::build(const SimplicialFactor& f, int threads) {
       chains_[map][j] = static_cast<std::uint8_t>(s);
       for (int m = 0; m < s; ++m) chain_top[map][j - m] = j;
       j -= s;
-    }
-  }
-  // The tree: each column's parent is its first row below the diagonal (the smallest).
-  parent_.assign(n, -1);
-  count_.assign(f.count, f.count + n);
-  for (std::int64_t j = 0; j < n; ++j) {
-    std::int64_t first = -1;
-    for (std::int64_t p = f.start[j] + 1; p < f.start[j] + f.count[j]; ++p)
-      if (first < 0 || f.row[p] < first) first = f.row[p];
-    if (first >= 0 && first <= j) return false;
-    parent_[j] = first;
-  }
-  // Each subtree's entries and its lowest column (children come before their parent).
-  std::vector<std::int64_t> work(n, 0), lowest(n);
-  for (std::int64_t j = 0; j < n; ++j) lowest[j] = j;
-  for (std::int64_t j = 0; j < n; ++j) {
-    work[j] += f.count[j];
-    if (parent_[j] >= 0) {
-      work[parent_[j]] += work[j];
-      lowest[parent_[j]] = std::min(lowest[parent_[j]], lowest[j]);
     }
   }
   std::vector<std::int64_t> child_start(n + 1, 0), children(n);
@@ -236,15 +248,27 @@ bool BackwardSolve::build(const SimplicialFactor& f, int threads) {
 }
 
 void BackwardSolve::check_paths(const SimplicialFactor& f, const std::vector<std::int64_t>& rows) {
-  if (!ready_) return;
+  if (!tree_ready_ && !ready_) return;
   for (std::int64_t j : rows) {
     for (; j >= 0; j = parent_[j]) {
       if (f.count[j] != count_[j]) {
-        ready_ = false;
+        ready_ = tree_ready_ = false;
         return;
       }
     }
   }
+}
+
+std::vector<std::int64_t> BackwardSolve::reach(const std::vector<std::int64_t>& rows) const {
+  std::vector<char> reached(parent_.size(), 0);
+  std::vector<std::int64_t> columns;
+  for (std::int64_t j : rows)
+    for (; j >= 0 && !reached[j]; j = parent_[j]) {
+      reached[j] = 1;
+      columns.push_back(j);
+    }
+  std::sort(columns.begin(), columns.end());
+  return columns;
 }
 
 template <int K>

@@ -12,6 +12,8 @@
 // simplicial kernel's arithmetic (the same grouping of chains, the same order of every
 // product and sum), so the result is CHOLMOD's bit for bit on any number of threads: a
 // test checks it against cholmod_l_solve2(CHOLMOD_DLt).
+//
+// The tree also gives the forward half's reach (reach()), whatever the threads.
 #pragma once
 
 #include <cstdint>
@@ -36,14 +38,23 @@ class BackwardSolve {
   // threads; the 2-D section at 500 m (838k entries) is far above.
   static constexpr std::int64_t least_entries = 50000;
 
-  // Builds the schedule for the factor's pattern, split for `threads` threads. False (and
-  // no schedule) when one thread is given, the factor is small, or the pattern does not
-  // split (the checks below fail): the caller then solves with CHOLMOD.
+  // Builds the tree of the factor's pattern (whatever the threads and the size), then the
+  // schedule, split for `threads` threads. False (and no schedule) when one thread is
+  // given, the factor is small, or the pattern does not split (the checks below fail):
+  // the caller then solves with CHOLMOD.
   bool build(const SimplicialFactor& factor, int threads);
   bool ready() const { return ready_; }
-  void clear() { ready_ = false; }
+  // Whether the tree gives a forward solve's reach (reach() below): every entry L(i, j)
+  // has been checked to lie on j's path to the root, i an ancestor of j. Fails only for
+  // a pattern that is not a factor's (or a tree that is not postordered).
+  bool tree_ready() const { return tree_ready_; }
+  // The columns a forward solve L y = b changes when b has entries in `rows` only: the
+  // union of their tree paths up to the root (Gilbert's theorem: the reach along the
+  // graph of L is that union), ascending. Needs tree_ready().
+  std::vector<std::int64_t> reach(const std::vector<std::int64_t>& rows) const;
   // An update of the factor changes only the columns on the tree's paths from the rows
-  // it touches up to the root. The schedule stays when none of them changed its pattern.
+  // it touches up to the root. The tree and the schedule stay when none of them changed
+  // its pattern.
   void check_paths(const SimplicialFactor& factor, const std::vector<std::int64_t>& rows);
   // D L' X = Y in place for `columns` right-hand sides stored column after column.
   void solve(const SimplicialFactor& factor, double* y, std::int64_t columns) const;
@@ -56,6 +67,7 @@ class BackwardSolve {
   template <int K>
   void solve_rows(const SimplicialFactor& factor, double* x) const;
   bool ready_ = false;
+  bool tree_ready_ = false;
   // For up to three right-hand sides (0) and for four (1): at a chain's highest column
   // its length, 0 elsewhere; and the top's chains (their highest columns), descending.
   std::vector<std::uint8_t> chains_[2];

@@ -351,7 +351,7 @@ void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
   auto* i = static_cast<std::int64_t*>(update_matrix->i);
   auto* x = static_cast<double*>(update_matrix->x);
   std::int64_t k = 0;
-  std::vector<std::int64_t> rows;  // in the factor's order, for the backward solve's check
+  std::vector<std::int64_t> rows;  // in the factor's order, for the tree's check (check_paths)
   for (std::size_t j = 0; j < columns.size(); ++j) {
     p[j] = k;
     Column sorted;
@@ -376,9 +376,10 @@ void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
         "the body can move without resistance");
   }
   check(c, ok, "cholmod_l_updown");
-  if (state_->backward.ready()) {
-    state_->backward.check_paths(simplicial(*factor), rows);
-    if (!state_->backward.ready()) state_->backward_stale = true;
+  BackwardSolve& backward = state_->backward;
+  if (backward.ready() || backward.tree_ready()) {
+    backward.check_paths(simplicial(*factor), rows);
+    if (!backward.ready() && !backward.tree_ready()) state_->backward_stale = true;
   }
 }
 
@@ -387,7 +388,8 @@ namespace {
 // The columns of a simplicial factor (column j starts at start[j] with its diagonal and
 // lists count[j] rows) that a forward solve from the given rows can change: every column
 // reachable along the graph of L, whose edges run from column j to the rows below its
-// diagonal. Returned in reverse topological order (a depth-first post-order).
+// diagonal. Returned in a depth-first post-order (the caller sorts them). Used where the
+// elimination tree does not give the reach (BackwardSolve::tree_ready()).
 std::vector<std::int64_t> reached_columns(const std::vector<std::int64_t>& rows,
                                           const std::int64_t* start, const std::int64_t* count,
                                           const std::int64_t* row, std::int64_t n) {
@@ -442,27 +444,40 @@ bool CholeskyFactor::solve_sparse(const std::vector<Column>& b, double* x) {
       rows.push_back(inverse_permutation_[r]);
     }
   }
-  const std::vector<std::int64_t> order = reached_columns(rows, start, count, row, n);
-  for (auto it = order.rbegin(); it != order.rend(); ++it) {
-    if (row[start[*it]] != *it) return false;
-  }
-  // One pass over the reached columns of L for all the right-hand sides.
-  for (auto it = order.rbegin(); it != order.rend(); ++it) {
-    const std::int64_t j = *it;
-    for (std::int64_t c = 0; c < columns; ++c) {
-      double* yc = y.data() + c * n;
-      const double yj = yc[j];
-      if (yj == 0) continue;
-      for (std::int64_t k = 1; k < count[j]; ++k) yc[row[start[j] + k]] -= value[start[j] + k] * yj;
-    }
-  }
-  // D L' z = y over every column (the solution is dense): over the elimination tree's
-  // subtrees on threads (backward_solve.h) where the factor is big enough, else CHOLMOD's
-  // own simplicial solve; the same numbers either way. Then x = P' z.
+  // The reached columns in ascending order, whichever way they are found: the order
+  // fixes each y(i)'s sum, so the numbers are the same either way.
   if (state_->backward_stale) {
     state_->backward.build(simple, threads::count());
     state_->backward_stale = false;
   }
+  std::vector<std::int64_t> order;
+  if (state_->backward.tree_ready()) {
+    order = state_->backward.reach(rows);
+  } else {
+    order = reached_columns(rows, start, count, row, n);
+    std::sort(order.begin(), order.end());
+  }
+  for (const std::int64_t j : order)
+    if (row[start[j]] != j) return false;
+  // Each right-hand side on its own (on the threads, for a factor big enough that the
+  // backward half takes them too), over the reached columns of L.
+  auto forward_solve = [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t c = first; c < last; ++c) {
+      double* yc = y.data() + c * n;
+      for (const std::int64_t j : order) {
+        const double yj = yc[j];
+        if (yj == 0) continue;
+        for (std::int64_t k = 1; k < count[j]; ++k) yc[row[start[j] + k]] -= value[start[j] + k] * yj;
+      }
+    }
+  };
+  if (state_->backward.ready() && columns > 1)
+    threads::for_blocks(columns, 1, forward_solve);
+  else
+    forward_solve(0, columns);
+  // D L' z = y over every column (the solution is dense): over the elimination tree's
+  // subtrees on threads (backward_solve.h) where the factor is big enough, else CHOLMOD's
+  // own simplicial solve; the same numbers either way. Then x = P' z.
   if (state_->backward.ready()) {
     state_->backward.solve(simple, y.data(), columns);
     for (std::int64_t col = 0; col < columns; ++col)

@@ -45,13 +45,15 @@ class CholeskyFactor final : public LinearBackend {
   // Solves K X = B for right-hand sides with few nonzeros each (rows may repeat: they
   // add) into X (n x b.size(), column after column). Needs the simplicial LDL' factor
   // that updates leave: the forward solve then visits only the columns of L that the
-  // right-hand sides reach, all of them in one pass, and the backward solve takes every
-  // column at once; about half the work of solve() for a bond's few entries.
+  // right-hand sides reach (their elimination tree paths), in ascending order, and the
+  // backward solve takes every column at once; about half the work of solve() for a
+  // bond's few entries.
   // Returns false, leaving X alone, when the factor is still supernodal (use solve()).
   // On more than one thread (threads::count()) and a factor of at least
   // BackwardSolve::least_entries entries, the backward solve runs over the elimination
   // tree's subtrees in parallel, with CHOLMOD's arithmetic: the same numbers bit for bit
-  // (src/solvers/backward_solve.h).
+  // (src/solvers/backward_solve.h); the forward half then takes each right-hand side on
+  // its own thread (the same numbers too).
   bool solve_sparse(const std::vector<Column>& b, double* x) override;
   // Whether the last solve_sparse took its backward half on threads (for tests, benches).
   bool backward_on_threads() const;
