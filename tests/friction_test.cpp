@@ -635,6 +635,29 @@ TEST_CASE("Hard: Fig. 6 with mu = 0.6, whose contacts stick and slip back and fo
 }
 
 
+TEST_CASE("Hard: a contact that settling makes stick right after its slip is held slipping, "
+          "and the run ends",
+          "[friction][hard]") {
+  // Uniaxial compression of the complete model's material (critical plane, mu = 0.8) in a
+  // 20 x 10 km specimen: at lambda -0.00618, after 400 breaks, a contact slipped, the
+  // settling after it made it stick again (its anchor jumped back at fixed lambda), and
+  // it slipped again a few ulps later, for ever: the run made no progress in 120 s
+  // (docs/robustness.md, "Unstable contacts"). Settling's sticks now count for the
+  // unstable-contact rule; the whole run takes about 1.5 s.
+  const Scene scene = read_problem_file(
+      std::string(LATFRAC_PROBLEMS_DIR) + "/material-test-2d.toml",
+      {"strength.criterion=\"tensile_or_shear\"", "strength.bond_stress=\"critical_plane\"",
+       "lattice.size=[20e3,10e3]", "lattice.seed=3", "contact.friction=0.8",
+       "output.snapshots=[-0.01]"});
+  const RunResult a = run_scene(scene, quiet());
+  CHECK(a.summary.complete);
+  CHECK(a.summary.contact_cycles >= 1);
+  CHECK(snapshots_finite(a));
+  CHECK(all_finite(a.friction_work));
+  const RunResult b = run_scene(scene, quiet());
+  check_same_events(a, b);
+}
+
 TEST_CASE("Hard: a part that slides nearly freely on its slipping contacts is held, not fatal",
           "[friction][hard]") {
   // The complete model's 3-D scene at 4000 m: at lambda 0.0283 the slipping contacts leave

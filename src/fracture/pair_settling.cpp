@@ -1,8 +1,6 @@
 // The active-set iteration over switching pairs at one lambda, with its cycle rule.
 #include "latfrac/fracture/pair_settling.h"
 
-#include <set>
-
 namespace latfrac {
 
 std::string closed_pairs(const Model& model) {
@@ -25,7 +23,9 @@ void PairSettling::settle(double lambda) {
       if (!model.contact_capable(b)) continue;
       const PairTarget wanted = model.law_of(b)->settled_state(model.springs(b), model.state(b),
                                                                model.bond_displacement(u, b));
-      if (wanted.state != model.state(b)) switches.push_back({b, wanted.state, wanted.direction});
+      if (wanted.state == model.state(b)) continue;
+      if (wanted.state == PairState::closed && slides(model.state(b)) && held_.contains(b)) continue;
+      switches.push_back({b, wanted.state, wanted.direction});
     }
     if (switches.empty()) return;
     const bool cycling = !visited.insert(closed_pairs(model)).second;
@@ -34,6 +34,8 @@ void PairSettling::settle(double lambda) {
       ++cycles_;
       if (switches.empty()) return;
     }
+    for (const PairChange& s : switches)
+      if (s.state == PairState::closed && slides(model.state(s.bond))) sticks_.push_back({s.bond, lambda});
     equilibrium_.change_pairs(switches, lambda, u);
     if (cycling) return;
   }

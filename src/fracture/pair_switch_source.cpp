@@ -28,8 +28,10 @@ double PairSwitchSource::propose(const AffinePath& path, double from, double to)
 }
 
 void PairSwitchSource::reached(double lambda) {
-  if (!unstable_.empty() && !(std::abs(lambda - unstable_lambda_) <= window(unstable_lambda_)))
+  if (!unstable_.empty() && !(std::abs(lambda - unstable_lambda_) <= window(unstable_lambda_))) {
     unstable_.clear();
+    settling_.release();
+  }
   std::erase_if(stuck_at_, [&](const auto& entry) {
     return !(std::abs(lambda - entry.second) <= window(entry.second));
   });
@@ -39,7 +41,12 @@ void PairSwitchSource::reached(double lambda) {
   switch_at_start_ = true;
 }
 
+void PairSwitchSource::note_sticks() {
+  for (const auto& [bond, lambda] : settling_.taken_sticks()) stuck_at_[bond] = lambda;
+}
+
 void PairSwitchSource::take(double lambda) {
+  note_sticks();
   const PairState from = equilibrium_.model().state(proposed_.bond);
   if (slides(from) && proposed_.state == PairState::closed) {
     stuck_at_[proposed_.bond] = lambda;
@@ -47,6 +54,7 @@ void PairSwitchSource::take(double lambda) {
     const auto stuck = stuck_at_.find(proposed_.bond);
     if (stuck != stuck_at_.end() && std::abs(lambda - stuck->second) <= window(stuck->second)) {
       unstable_.insert(proposed_.bond);
+      settling_.hold(proposed_.bond);
       unstable_lambda_ = lambda;
       settling_.count_cycle();
     }
@@ -54,6 +62,7 @@ void PairSwitchSource::take(double lambda) {
   equilibrium_.change_pairs({proposed_}, lambda, equilibrium_.displacement(lambda));
   settling_.settle(lambda);
   breaking_.cascade(lambda);
+  note_sticks();
   if (!sets_at_lambda_.insert(closed_pairs(equilibrium_.model())).second) {
     switch_at_start_ = false;
     settling_.count_cycle();
@@ -82,6 +91,8 @@ void PairSwitchSource::restore(const SwitchGuard& guard) {
   for (std::size_t k = 0; k < guard.stuck_bonds.size() && k < guard.stuck_lambdas.size(); ++k)
     stuck_at_[guard.stuck_bonds[k]] = guard.stuck_lambdas[k];
   unstable_ = {guard.unstable.begin(), guard.unstable.end()};
+  settling_.release();
+  for (const std::int64_t bond : unstable_) settling_.hold(bond);
   unstable_lambda_ = guard.unstable_lambda;
 }
 

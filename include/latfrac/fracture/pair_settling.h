@@ -8,10 +8,16 @@
 // equilibrium is computed and the iteration stops; the few contacts left slightly
 // pulling are checked again at the next event or step (docs/robustness.md). Every call
 // ends: a repeated set always triggers that rule.
+//
+// Friction: a contact held slipping (unstable, pair_switch_source.h) is not made to stick
+// here while it is held; every contact that settling makes stick from a slide is noted
+// (taken_sticks) for the unstable-contact rule.
 #pragma once
 
 #include <cstdint>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "latfrac/fracture/equilibrium_state.h"
@@ -31,10 +37,18 @@ class PairSettling {
   // guard, contact_cycles in /summary).
   std::int64_t cycles() const { return cycles_; }
   void count_cycle() { ++cycles_; }
+  // Friction: hold a sliding contact slipping (settling does not make it stick), and let
+  // every held contact go.
+  void hold(std::int64_t bond) { held_.insert(bond); }
+  void release() { held_.clear(); }
+  // The contacts settling made stick from a slide since the last call, with the lambda.
+  std::vector<std::pair<std::int64_t, double>> taken_sticks() { return std::exchange(sticks_, {}); }
 
  private:
   EquilibriumState& equilibrium_;
   std::int64_t cycles_ = 0;
+  std::set<std::int64_t> held_;
+  std::vector<std::pair<std::int64_t, double>> sticks_;
 };
 
 }  // namespace latfrac

@@ -11,9 +11,13 @@
 // With friction a contact can have no consistent state on a path: sticking, its force
 // leaves the cone at once; slipping, its slip runs backwards. It would then stick and slip
 // again ever closer together (a Zeno sequence: measured, steps of 2e-13 in lambda). A
-// contact that slips again within unstable_window of lambda after it stuck is taken as
-// unstable: it goes on slipping (its slip->stick switch is not proposed) until the loop
-// has moved on by more than the window, and the cycle is counted.
+// contact that slips again within unstable_window of lambda after it stuck (at a switch
+// taken here, or in a settling) is taken as unstable: it goes on slipping (its
+// slip->stick switch is not proposed, and settling holds it, pair_settling.h) until the
+// loop has moved on by more than the window, and the cycle is counted. Without the
+// settling's part, a contact that the settling after its own slip made stick again (its
+// anchor jumped back at fixed lambda) slipped again a few ulps later, for ever (measured:
+// steps of 7e-16 in lambda, docs/robustness.md).
 #pragma once
 
 #include <algorithm>
@@ -58,6 +62,8 @@ class PairSwitchSource final : public EventSource {
   std::map<std::int64_t, double> stuck_at_;
   std::set<std::int64_t> unstable_;
   double unstable_lambda_ = EventSource::none;
+  // Notes where settling made contacts stick (stuck_at_).
+  void note_sticks();
   static double window(double lambda) {
     return unstable_window * std::max(std::abs(lambda), 1e-6);
   }
