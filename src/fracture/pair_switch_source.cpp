@@ -18,7 +18,7 @@ double PairSwitchSource::propose(const AffinePath& path, double from, double to)
     const PairSwitch change = model.law_of(b)->next_switch(
         model.springs(b), model.state(b), model.bond_displacement(full.at_zero, b),
         sign * model.relative_motion(full.per_lambda, b), s_from, s_to,
-        switch_at_start_ && !unstable_.contains(b));
+        switch_at_start_ && !settling_.held().contains(b));
     if (change.found() && change.s < first) {
       first = change.s;
       proposed_ = {b, change.to, change.direction};
@@ -28,10 +28,8 @@ double PairSwitchSource::propose(const AffinePath& path, double from, double to)
 }
 
 void PairSwitchSource::reached(double lambda) {
-  if (!unstable_.empty() && !(std::abs(lambda - unstable_lambda_) <= window(unstable_lambda_))) {
-    unstable_.clear();
+  if (!settling_.held().empty() && !(std::abs(lambda - unstable_lambda_) <= window(unstable_lambda_)))
     settling_.release();
-  }
   std::erase_if(stuck_at_, [&](const auto& entry) {
     return !(std::abs(lambda - entry.second) <= window(entry.second));
   });
@@ -53,7 +51,6 @@ void PairSwitchSource::take(double lambda) {
   } else if (from == PairState::closed && slides(proposed_.state)) {
     const auto stuck = stuck_at_.find(proposed_.bond);
     if (stuck != stuck_at_.end() && std::abs(lambda - stuck->second) <= window(stuck->second)) {
-      unstable_.insert(proposed_.bond);
       settling_.hold(proposed_.bond);
       unstable_lambda_ = lambda;
       settling_.count_cycle();
@@ -78,7 +75,7 @@ SwitchGuard PairSwitchSource::guard() const {
     guard.stuck_bonds.push_back(bond);
     guard.stuck_lambdas.push_back(lambda);
   }
-  guard.unstable.assign(unstable_.begin(), unstable_.end());
+  guard.unstable.assign(settling_.held().begin(), settling_.held().end());
   guard.unstable_lambda = unstable_lambda_;
   return guard;
 }
@@ -90,9 +87,8 @@ void PairSwitchSource::restore(const SwitchGuard& guard) {
   stuck_at_.clear();
   for (std::size_t k = 0; k < guard.stuck_bonds.size() && k < guard.stuck_lambdas.size(); ++k)
     stuck_at_[guard.stuck_bonds[k]] = guard.stuck_lambdas[k];
-  unstable_ = {guard.unstable.begin(), guard.unstable.end()};
   settling_.release();
-  for (const std::int64_t bond : unstable_) settling_.hold(bond);
+  for (const std::int64_t bond : guard.unstable) settling_.hold(bond);
   unstable_lambda_ = guard.unstable_lambda;
 }
 

@@ -37,10 +37,11 @@ class PairSettling {
   // guard, contact_cycles in /summary).
   std::int64_t cycles() const { return cycles_; }
   void count_cycle() { ++cycles_; }
-  // Friction: hold a sliding contact slipping (settling does not make it stick), and let
-  // every held contact go.
+  // Friction: the contacts held slipping (the unstable-contact rule of
+  // pair_switch_source.h, whose only record they are): settling does not make them stick.
   void hold(std::int64_t bond) { held_.insert(bond); }
   void release() { held_.clear(); }
+  const std::set<std::int64_t>& held() const { return held_; }
   // The contacts settling made stick from a slide since the last call, with the lambda.
   std::vector<std::pair<std::int64_t, double>> taken_sticks() { return std::exchange(sticks_, {}); }
 

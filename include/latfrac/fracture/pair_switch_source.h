@@ -60,7 +60,6 @@ class PairSwitchSource final : public EventSource {
   // Friction: where each contact last stuck, the contacts taken as unstable, and the
   // lambda at which the last one was.
   std::map<std::int64_t, double> stuck_at_;
-  std::set<std::int64_t> unstable_;
   double unstable_lambda_ = EventSource::none;
   // Notes where settling made contacts stick (stuck_at_).
   void note_sticks();
