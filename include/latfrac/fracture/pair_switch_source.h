@@ -57,8 +57,8 @@ class PairSwitchSource final : public EventSource {
   std::set<std::string> sets_at_lambda_;
   double sets_lambda_ = EventSource::none;
   bool switch_at_start_ = true;
-  // Friction: where each contact last stuck, the contacts taken as unstable, and the
-  // lambda at which the last one was.
+  // Friction: where each contact last stuck, and the lambda at which the last contact was
+  // taken as unstable (the contacts so taken are settling_.held()).
   std::map<std::int64_t, double> stuck_at_;
   double unstable_lambda_ = EventSource::none;
   // Notes where settling made contacts stick (stuck_at_).
