@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "latfrac/fracture/equilibrium_state.h"
 #include "latfrac/solvers/equilibrium.h"
 #include "latfrac/mechanics/node_stress.h"
 #include "lithostatic_check.h"
@@ -151,6 +152,72 @@ TEST_CASE("A node without bonds stays put and the report says not converged", "[
     CHECK(u.allFinite());
     CHECK(model.node_displacement(model.full_displacement(u, 0.0), centre).norm() == 0);
   }
+}
+
+TEST_CASE("A node held by one contact moves along its normal only, and never diverges",
+          "[relaxation]") {
+  // The node nearest the centre keeps one pair: a closed contact to a neighbour below it,
+  // inclined, so its stiffness block kn n n' has rank 1. Its weight has a part along n,
+  // which the contact balances, and a part across it, which nothing can. Treating each
+  // axis as if the others stood still (omega F_c / B_cc) moves the contact by 2 omega
+  // times its misfit per visit and diverges for omega > 1/2.
+  const bool general = GENERATE(false, true);
+  Scene scene = testing::box_scene(2, 1.0, {8.0, 0, 4.0}, true);
+  scene.contact = Contact{};
+  scene.solver.relaxation_max_sweeps = 200;
+  Model model = build_model(scene);
+  const Lattice& lattice = model.lattice;
+  std::int64_t centre = 0;
+  for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
+    if ((lattice.positions[n] - lattice.extent / 2).norm() <
+        (lattice.positions[centre] - lattice.extent / 2).norm())
+      centre = n;
+  }
+  std::int64_t kept = -1;
+  for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
+    const Bond& bond = lattice.bonds[b];
+    if (bond.i != centre && bond.j != centre) continue;
+    const std::int64_t other = bond.i == centre ? bond.j : bond.i;
+    const Vec3 d = lattice.positions[other] - lattice.positions[centre];
+    const bool below_inclined = kept < 0 && d.z() < 0 && std::abs(d.x()) > 0.1;
+    ModelEditor(model).set_state(b, below_inclined ? PairState::closed : PairState::open);
+    if (below_inclined) kept = b;
+  }
+  REQUIRE(kept >= 0);
+  if (general) flag_nonlinear(model);
+  Vector u = Vector::Zero(model.dofs().free_count);
+  const RelaxationReport report = RelaxationSolver(scene.solver).solve(model, 0.0, u);
+  INFO((general ? "general" : "linear") << " sweep: residual " << report.relative_residual);
+  CHECK_FALSE(report.converged);  // the weight across the contact meets no stiffness
+  CHECK(std::isfinite(report.relative_residual));
+  REQUIRE(u.allFinite());
+  // The node's out-of-balance force (external minus internal, summed over its pairs) has
+  // no part along the contact's normal: statics along n holds.
+  const Vector full = model.full_displacement(u, 0.0);
+  const Vec3 n = lattice.bond_direction[kept];
+  const Vec3 weight = model.node_displacement(model.external_force, centre);
+  const Vec3 tension = model.bond_tension(full, kept);  // the internal force on end j
+  const Vec3 internal = lattice.bonds[kept].j == centre ? tension : Vec3(-tension);
+  const Vec3 out_of_balance = weight - internal;
+  CHECK(std::abs(out_of_balance.dot(n)) < 1e-6 * weight.norm());
+  CHECK(std::abs(out_of_balance.dot(n)) < 1e-3 * std::abs(weight.dot(n)));
+}
+
+TEST_CASE("A relaxed state that is not finite stops the run with a clear error",
+          "[relaxation]") {
+  // The run's equilibrium relaxes from its last state; a NaN there cannot be relaxed away,
+  // and it must not reach a criterion (NaN in the events).
+  Scene scene = testing::box_scene(2, 1.0, {8.0, 0, 4.0}, true);
+  scene.solver.method = EquilibriumMethod::relaxation;
+  scene.solver.relaxation_max_sweeps = 20;
+  Model model = build_model(scene);
+  EquilibriumSolver solver(model, scene.solver);
+  EquilibriumState equilibrium(model, solver, scene.solver);
+  Vector state = Vector::Zero(model.dofs().free_count);
+  CHECK(equilibrium.displacement(1e-4).allFinite());  // a finite start relaxes
+  state[state.size() / 2] = std::nan("");
+  equilibrium.adopt(state, 0.0);
+  CHECK_THROWS_WITH(equilibrium.displacement(1e-4), Catch::Contains("relaxation diverged"));
 }
 
 TEST_CASE("Relaxation from the exact solution stops at the first check", "[relaxation]") {

@@ -3,6 +3,9 @@
 
 #include "latfrac/base/error.h"
 
+#include <cmath>
+#include <string>
+
 namespace latfrac {
 
 EquilibriumState::EquilibriumState(Model& model, EquilibriumSolver& solver,
@@ -58,6 +61,14 @@ void EquilibriumState::relax(double lambda) {
   // unknowns by hold()).
   if (state_.size() != model_.dofs().free_count) state_ = Vector::Zero(model_.dofs().free_count);
   const RelaxationReport report = relaxation_->solve(model_, lambda, state_);
+  // A state that is not finite must not reach a criterion: the run stops here, its last
+  // checkpoint intact, instead of carrying NaN into the events.
+  if (!std::isfinite(report.relative_residual) || !state_.allFinite()) {
+    throw Error("the relaxation diverged at lambda = " + std::to_string(lambda) + " (after " +
+                std::to_string(report.sweeps) +
+                " sweeps its residual is not a finite number); solver.method = \"newton\" "
+                "solves the same equilibrium directly");
+  }
   state_lambda_ = lambda;
   state_valid_ = true;
   ++relaxation_solves_;

@@ -7,6 +7,7 @@
 // law for every bond's tension and tangent at each visit.
 #include "latfrac/solvers/relaxation.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
 #include <cassert>
@@ -48,8 +49,12 @@ Vec3 bond_tension(const Model& model, std::int64_t b, const Vec3& du, Mat3* tang
 }
 
 // A node's move per unit out-of-balance force: omega B^-1 on the free axes, zero rows and
-// columns on the others. A singular B falls back to the scalar form omega / B_aa per free
-// axis (B_aa: the sum of the bonds' stiffness along a); an axis without stiffness stays.
+// columns on the others. A singular B (a node held by too few pairs: one contact, say)
+// takes its pseudo-inverse: the node moves only where it has stiffness, and each
+// direction is relaxed once. (Relaxing each axis on its own, omega F_a / B_aa, relaxes a
+// single inclined spring once per axis it touches: its misfit is multiplied by
+// 1 - 2 omega per visit in 2-D, and the sweep diverges for omega > 1.) An axis without
+// stiffness stays.
 Mat3 update_operator(const Mat3& block, std::uint8_t free_axes, double omega) {
   double scale = 0;
   for (int a = 0; a < 3; ++a) {
@@ -70,14 +75,22 @@ Mat3 update_operator(const Mat3& block, std::uint8_t free_axes, double omega) {
   bool invertible = false;
   restricted.computeInverseAndDetWithCheck(inverse, determinant, invertible,
                                            1e-10 * scale * scale * scale);
+  if (!invertible) {
+    // Tangent blocks are symmetric here (relaxation has no friction); their eigenvalues
+    // below 1e-10 of the largest are taken as zero.
+    const Eigen::SelfAdjointEigenSolver<Mat3> eigen(0.5 * (restricted + restricted.transpose()));
+    const double largest = eigen.eigenvalues().cwiseAbs().maxCoeff();
+    inverse.setZero();
+    for (int k = 0; k < 3; ++k) {
+      const double value = eigen.eigenvalues()[k];
+      if (value > 1e-10 * largest)
+        inverse += eigen.eigenvectors().col(k) * eigen.eigenvectors().col(k).transpose() / value;
+    }
+  }
   for (int a = 0; a < 3; ++a) {
     if (!(free_axes & (1u << a))) continue;
-    if (invertible) {
-      for (int b = 0; b < 3; ++b) {
-        if (free_axes & (1u << b)) update(a, b) = omega * inverse(a, b);
-      }
-    } else if (block(a, a) > 0) {
-      update(a, a) = omega / block(a, a);
+    for (int b = 0; b < 3; ++b) {
+      if (free_axes & (1u << b)) update(a, b) = omega * inverse(a, b);
     }
   }
   return update;
