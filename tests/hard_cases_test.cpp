@@ -11,6 +11,7 @@
 #include <set>
 
 #include "final_state.h"
+#include "latfrac/base/error.h"
 #include "hard_case_checks.h"
 #include "latfrac/solvers/equilibrium.h"
 #include "latfrac/mechanics/fragments.h"
@@ -286,6 +287,18 @@ TEST_CASE("Hard: extreme aspect ratios, 200 x 2 and 2 x 100 spacings", "[hard]")
   CHECK(snapshots_finite(broken));
   CHECK(broken.summary.breaks > 0);
   check_final_equilibrium(scene, broken);
+}
+
+TEST_CASE("Hard: a g whose weights overflow is refused before any solve", "[hard]") {
+  // 2600 kg/m^3 times 1e300 m/s^2 times a cell's volume is beyond the doubles' range: the
+  // weights would be inf and every event's f NaN.
+  Scene scene = testing::box_scene(2, 1000.0, {20e3, 0, 10e3}, true);
+  scene.strength = strength_of(Criterion::elliptic, 50e6);
+  scene.gravity->g = 1e300;
+  CHECK_THROWS_AS(build_model(scene), InputError);
+  CHECK_THROWS_WITH(run_scene(scene, quiet()), Catch::Contains("not finite"));
+  scene.gravity->g = 9.81;  // the same scene with a physical g builds
+  CHECK(build_model(scene).external_force.allFinite());
 }
 
 TEST_CASE("Hard: no gravity and no extension: nothing moves, nothing breaks", "[hard]") {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <optional>
 #include <random>
+#include <sstream>
 #include <string>
 
 #include "latfrac/base/error.h"
@@ -187,6 +188,15 @@ Model build_model(const Scene& scene, const FailureCriterion* criterion) {
       model.external_force[n * dim + z_component] =
           -material.density * scene.gravity->g * lattice.volume_of(n);
     }
+  }
+  if (scene.gravity && !model.external_force.allFinite()) {
+    // A weight beyond the doubles' range would carry inf, then NaN, into every solve.
+    std::ostringstream g;
+    g << scene.gravity->g;
+    throw InputError("gravity.g = " + g.str() +
+                     " m/s^2 gives nodes' weights that are not finite numbers (density times g "
+                     "times a node's volume overflows); allowed: a g whose weights are finite, "
+                     "as any physical g's are");
   }
   if (scene.gravity && scene.gravity->lithostatic) {
     if (!lattice.is_random() || scene.large_kinematics)
