@@ -289,16 +289,36 @@ TEST_CASE("Hard: extreme aspect ratios, 200 x 2 and 2 x 100 spacings", "[hard]")
   check_final_equilibrium(scene, broken);
 }
 
-TEST_CASE("Hard: a g whose weights overflow is refused before any solve", "[hard]") {
-  // 2600 kg/m^3 times 1e300 m/s^2 times a cell's volume is beyond the doubles' range: the
-  // weights would be inf and every event's f NaN.
-  Scene scene = testing::box_scene(2, 1000.0, {20e3, 0, 10e3}, true);
-  scene.strength = strength_of(Criterion::elliptic, 50e6);
-  scene.gravity->g = 1e300;
-  CHECK_THROWS_AS(build_model(scene), InputError);
-  CHECK_THROWS_WITH(run_scene(scene, quiet()), Catch::Contains("not finite"));
-  scene.gravity->g = 9.81;  // the same scene with a physical g builds
-  CHECK(build_model(scene).external_force.allFinite());
+TEST_CASE("Hard: scales that overflow are refused before any solve, with the keys", "[hard]") {
+  // Each of these ran to the end and was refused only when the result was written, with
+  // inf or NaN in its events ("a bug in latfrac").
+  const auto scene_with = [](auto change) {
+    Scene scene = testing::box_scene(2, 1000.0, {20e3, 0, 10e3}, true);
+    scene.strength = strength_of(Criterion::elliptic, 50e6);
+    change(scene);
+    return scene;
+  };
+  // A strength of 1e-300 Pa: f = (sigma / sigma0)^2 overflows under any load.
+  CHECK_THROWS_WITH(run_scene(scene_with([](Scene& s) { s.strength->sigma0 = 1e-300; }), quiet()),
+                    Catch::Contains("strength.sigma0 = 1e-300 Pa") && Catch::Contains("1e-12"));
+  // A modulus of 1e300 Pa: the same failure strain from the other side.
+  CHECK_THROWS_WITH(
+      run_scene(scene_with([](Scene& s) { s.material.young = 1e300; }), quiet()),
+      Catch::Contains("young = 1e+300"));
+  // g = 1e300: gravity's strain rho g H / E is 7.8e296 (and the weights overflow).
+  CHECK_THROWS_WITH(run_scene(scene_with([](Scene& s) { s.gravity->g = 1e300; }), quiet()),
+                    Catch::Contains("rho g H / young"));
+  // A weight that overflows while its strain is small (density 5e302, E 1e308, H 10.4 km:
+  // strain 0.51; weight 5e302 x 9.81 x 1e6 m^2 = inf), with a strength to match.
+  CHECK_THROWS_WITH(run_scene(scene_with([](Scene& s) {
+                                s.material.density = 5e302;
+                                s.material.young = 1e308;
+                                s.strength->sigma0 = 1e297;
+                              }),
+                              quiet()),
+                    Catch::Contains("not finite"));
+  // The unchanged scene builds, its weights finite.
+  CHECK(build_model(scene_with([](Scene&) {})).external_force.allFinite());
 }
 
 TEST_CASE("Hard: no gravity and no extension: nothing moves, nothing breaks", "[hard]") {
