@@ -11,12 +11,12 @@
 #include <set>
 
 #include "final_state.h"
-#include "latfrac/base/error.h"
 #include "hard_case_checks.h"
-#include "latfrac/solvers/equilibrium.h"
+#include "latfrac/base/error.h"
 #include "latfrac/mechanics/fragments.h"
 #include "latfrac/mechanics/node_stress.h"
 #include "latfrac/scene/run.h"
+#include "latfrac/solvers/equilibrium.h"
 #include "random_breaks.h"
 #include "scenes.h"
 
@@ -302,9 +302,8 @@ TEST_CASE("Hard: scales that overflow are refused before any solve, with the key
   CHECK_THROWS_WITH(run_scene(scene_with([](Scene& s) { s.strength->sigma0 = 1e-300; }), quiet()),
                     Catch::Contains("strength.sigma0 = 1e-300 Pa") && Catch::Contains("1e-12"));
   // A modulus of 1e300 Pa: the same failure strain from the other side.
-  CHECK_THROWS_WITH(
-      run_scene(scene_with([](Scene& s) { s.material.young = 1e300; }), quiet()),
-      Catch::Contains("young = 1e+300"));
+  CHECK_THROWS_WITH(run_scene(scene_with([](Scene& s) { s.material.young = 1e300; }), quiet()),
+                    Catch::Contains("young = 1e+300"));
   // g = 1e300: gravity's strain rho g H / E is 7.8e296 (and the weights overflow).
   CHECK_THROWS_WITH(run_scene(scene_with([](Scene& s) { s.gravity->g = 1e300; }), quiet()),
                     Catch::Contains("rho g H / young"));

@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "latfrac/fracture/equilibrium_state.h"
-#include "latfrac/solvers/equilibrium.h"
 #include "latfrac/mechanics/node_stress.h"
+#include "latfrac/solvers/equilibrium.h"
 #include "lithostatic_check.h"
 #include "scenes.h"
 
@@ -21,13 +21,10 @@ Vector direct_solution(Model& model, const SolverOptions& options, double lambda
   return u;
 }
 
-double relative_difference(const Vector& a, const Vector& b) {
-  return max_abs(a - b) / max_abs(b);
-}
+double relative_difference(const Vector& a, const Vector& b) { return max_abs(a - b) / max_abs(b); }
 
 double relative_residual(const Model& model, const Vector& u, double lambda) {
-  const double load =
-      max_abs(model.residual(Vector::Zero(model.dofs().free_count), lambda));
+  const double load = max_abs(model.residual(Vector::Zero(model.dofs().free_count), lambda));
   return max_abs(model.residual(u, lambda)) / load;
 }
 
@@ -53,10 +50,9 @@ class FlaggedNonlinear final : public BondLaw {
 
 // Gives the model that law, keeping its contact law.
 void flag_nonlinear(Model& model) {
-  ModelEditor(model).set_laws(std::make_unique<FlaggedNonlinear>(model.dim()),
-                              model.has_contact()
-                                  ? std::make_unique<ContactLaw>(model.lattice.spacing)
-                                  : nullptr);
+  ModelEditor(model).set_laws(
+      std::make_unique<FlaggedNonlinear>(model.dim()),
+      model.has_contact() ? std::make_unique<ContactLaw>(model.lattice.spacing) : nullptr);
 }
 
 // The node nearest the lattice's centre (the lowest id on a tie).
@@ -204,8 +200,7 @@ TEST_CASE("A node held by one contact moves along its normal only, and never div
   CHECK(std::abs(out_of_balance.dot(n)) < 1e-3 * std::abs(weight.dot(n)));
 }
 
-TEST_CASE("A relaxed state that is not finite stops the run with a clear error",
-          "[relaxation]") {
+TEST_CASE("A relaxed state that is not finite stops the run with a clear error", "[relaxation]") {
   // The run's equilibrium relaxes from its last state; a NaN there cannot be relaxed away,
   // and it must not reach a criterion (NaN in the events).
   Scene scene = testing::box_scene(2, 1.0, {8.0, 0, 4.0}, true);
@@ -306,6 +301,5 @@ TEST_CASE("Relaxation rejects omega outside (0, 2)", "[relaxation]") {
   Scene scene = testing::box_scene(2, 1.0, {6.0, 0, 4.0}, true);
   Model model = build_model(scene);
   scene.solver.relaxation_omega = 2.0;
-  CHECK_THROWS_WITH(RelaxationSolver(scene.solver),
-                    Catch::Contains("0 < relaxation_omega < 2"));
+  CHECK_THROWS_WITH(RelaxationSolver(scene.solver), Catch::Contains("0 < relaxation_omega < 2"));
 }

@@ -1,10 +1,10 @@
 // The equilibrium of a fracture run: its method, its caches, and the changes of the model.
 #include "latfrac/fracture/equilibrium_state.h"
 
-#include "latfrac/base/error.h"
-
 #include <cmath>
 #include <string>
+
+#include "latfrac/base/error.h"
 
 namespace latfrac {
 
@@ -32,8 +32,9 @@ auto EquilibriumState::holding_singular(double lambda, Solve solve) {
       std::int64_t dof = 0;
       while (dof < dofs.dof_count() && dofs.free_index[dof] != singular.unknown()) ++dof;
       if (dof == dofs.dof_count()) throw;
-      const Vector last = state_.size() == dofs.free_count ? model_.full_displacement(state_, lambda)
-                                                           : Vector::Zero(dofs.dof_count());
+      const Vector last = state_.size() == dofs.free_count
+                              ? model_.full_displacement(state_, lambda)
+                              : Vector::Zero(dofs.dof_count());
       solver_.hold({{{dof / model_.dim()}, {static_cast<int>(dof % model_.dim())}}}, last);
       fragments_.push_back({lambda, 1});
       invalidate();
@@ -140,8 +141,8 @@ void EquilibriumState::commit_at(const Vector& displacement) {
   const InteractionLaw& law = *model_.contact_law();
   for (std::int64_t b = 0; b < model_.lattice.bond_count(); ++b) {
     if (!model_.contact_capable(b)) continue;
-    solver_.set_contact_memory(
-        b, law.advanced(model_.springs(b), model_.state(b), model_.bond_displacement(displacement, b)));
+    solver_.set_contact_memory(b, law.advanced(model_.springs(b), model_.state(b),
+                                               model_.bond_displacement(displacement, b)));
   }
 }
 
@@ -155,10 +156,9 @@ void EquilibriumState::change_pairs(const std::vector<PairChange>& changes, doub
     const PairState state = model_.state(change.bond);
     if (model_.has_friction() && model_.can_touch(change.bond)) {
       solver_.set_contact_memory(
-          change.bond,
-          model_.contact_law()->entered(model_.springs(change.bond), state, change.state,
-                                        model_.bond_displacement(before, change.bond),
-                                        change.direction));
+          change.bond, model_.contact_law()->entered(
+                           model_.springs(change.bond), state, change.state,
+                           model_.bond_displacement(before, change.bond), change.direction));
     }
     solver_.set_pair_state(change.bond, change.state);
     if (connects(state) && !connects(change.state)) disconnected.push_back(change.bond);

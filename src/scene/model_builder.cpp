@@ -76,8 +76,8 @@ void check_scales(const Scene& scene, const Model& model) {
     for (const auto& [name, strength] :
          {std::pair{"sigma0", model.bond_sigma0[b]}, std::pair{"tau0", model.bond_tau0[b]}}) {
       if (!(strength > 0) || strength >= smallest_failure_strain * model.bond_young[b]) continue;
-      message << "strength." << name << " = " << strength << " Pa against young = "
-              << model.bond_young[b] << " Pa (bond " << b
+      message << "strength." << name << " = " << strength
+              << " Pa against young = " << model.bond_young[b] << " Pa (bond " << b
               << ") is a failure strain below 1e-12, which makes the failure index overflow; "
                  "allowed: strengths of at least 1e-12 times the Young modulus";
       throw InputError(message.str());
@@ -85,9 +85,12 @@ void check_scales(const Scene& scene, const Model& model) {
   }
   if (!scene.gravity) return;
   const double height = model.lattice.extent.z();
-  auto gravity_strain = [&](const Material& m) { return m.density * scene.gravity->g * height / m.young; };
+  auto gravity_strain = [&](const Material& m) {
+    return m.density * scene.gravity->g * height / m.young;
+  };
   double largest = gravity_strain(scene.material);
-  for (const Layer& layer : scene.layers) largest = std::max(largest, gravity_strain(layer.material));
+  for (const Layer& layer : scene.layers)
+    largest = std::max(largest, gravity_strain(layer.material));
   if (!(largest <= 1)) {
     message << "gravity's strain rho g H / young = " << largest
             << " (density, gravity.g and the lattice's height " << height
@@ -141,9 +144,9 @@ void set_lithostatic_prestress(const Scene& scene, Model& model) {
     Vec3 d = -(normal / model.normal_stiffness[b]) * n;
     if (shear.norm() > 0) {
       if (!(model.shear_stiffness[b] > 0))
-        throw InputError(
-            "gravity.stress_ratio != 1 needs shear springs (bond " + std::to_string(b) +
-            " has ks = 0): an anisotropic initial stress shears the bonds");
+        throw InputError("gravity.stress_ratio != 1 needs shear springs (bond " +
+                         std::to_string(b) +
+                         " has ks = 0): an anisotropic initial stress shears the bonds");
       d -= shear / model.shear_stiffness[b];
     }
     model.prestretch[b] = d;

@@ -181,10 +181,7 @@ class LinearNodes {
 class GeneralNodes {
  public:
   GeneralNodes(const Model& model, const NodeBonds& node_bonds, double omega)
-      : model_(model),
-        node_bonds_(node_bonds),
-        omega_(omega),
-        free_axes_(free_axes_of(model)) {
+      : model_(model), node_bonds_(node_bonds), omega_(omega), free_axes_(free_axes_of(model)) {
     acts_.resize(model.lattice.bond_count());
     for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) acts_[b] = acts(model, b);
   }
@@ -223,8 +220,8 @@ class GeneralNodes {
     for (std::int64_t k = node_bonds_.start[n]; k < node_bonds_.start[n + 1]; ++k) {
       const std::int64_t b = node_bonds_.entries[k] / 2;
       if (!acts_[b]) continue;
-      const Vec3 t = bond_tension(model_, b, model_.bond_displacement(u, b),
-                                  block ? &tangent : nullptr);
+      const Vec3 t =
+          bond_tension(model_, b, model_.bond_displacement(u, b), block ? &tangent : nullptr);
       if (block) *block += tangent;
       // The internal force is +t on end j and -t on end i.
       if (model_.lattice.bonds[b].j == n) {
