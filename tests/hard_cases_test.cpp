@@ -304,18 +304,9 @@ TEST_CASE("Hard: scales that overflow are refused before any solve, with the key
   // A modulus of 1e300 Pa: the same failure strain from the other side.
   CHECK_THROWS_WITH(run_scene(scene_with([](Scene& s) { s.material.young = 1e300; }), quiet()),
                     Catch::Contains("young = 1e+300"));
-  // g = 1e300: gravity's strain rho g H / E is 7.8e296 (and the weights overflow).
+  // g = 1e300: the weights (2600 x 1e300 x a cell's 8.7e5 m^2) overflow to inf.
   CHECK_THROWS_WITH(run_scene(scene_with([](Scene& s) { s.gravity->g = 1e300; }), quiet()),
-                    Catch::Contains("rho g H / young"));
-  // A weight that overflows while its strain is small (density 5e302, E 1e308, H 10.4 km:
-  // strain 0.51; weight 5e302 x 9.81 x 1e6 m^2 = inf), with a strength to match.
-  CHECK_THROWS_WITH(run_scene(scene_with([](Scene& s) {
-                                s.material.density = 5e302;
-                                s.material.young = 1e308;
-                                s.strength->sigma0 = 1e297;
-                              }),
-                              quiet()),
-                    Catch::Contains("not finite"));
+                    Catch::Contains("gravity.g = 1e+300") && Catch::Contains("not finite"));
   // The unchanged scene builds, its weights finite.
   CHECK(build_model(scene_with([](Scene&) {})).external_force.allFinite());
 }

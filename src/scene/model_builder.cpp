@@ -65,11 +65,10 @@ void assign_strengths(const Scene& scene, const FailureCriterion* criterion, Mod
   }
 }
 
-// The model's strains are small, and its failure indices are squares of stress over
-// strength. A strength below 1e-12 of the modulus (a failure strain that no rock has) makes
-// f overflow to inf under any loading, and a weight whose strain rho g H / E exceeds 1
-// is outside small strains: both are refused with the values, before any solve.
-void check_scales(const Scene& scene, const Model& model) {
+// The failure indices are squares of stress over strength. A strength below 1e-12 of the
+// modulus (a failure strain that no rock has) makes f overflow to inf under any loading:
+// refused with the values, before any solve.
+void check_failure_strains(const Model& model) {
   constexpr double smallest_failure_strain = 1e-12;
   std::ostringstream message;
   for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
@@ -82,21 +81,6 @@ void check_scales(const Scene& scene, const Model& model) {
                  "allowed: strengths of at least 1e-12 times the Young modulus";
       throw InputError(message.str());
     }
-  }
-  if (!scene.gravity) return;
-  const double height = model.lattice.extent.z();
-  auto gravity_strain = [&](const Material& m) {
-    return m.density * scene.gravity->g * height / m.young;
-  };
-  double largest = gravity_strain(scene.material);
-  for (const Layer& layer : scene.layers)
-    largest = std::max(largest, gravity_strain(layer.material));
-  if (!(largest <= 1)) {
-    message << "gravity's strain rho g H / young = " << largest
-            << " (density, gravity.g and the lattice's height " << height
-            << " m against the Young modulus): the model's strains are small; allowed: "
-               "rho g H / young <= 1";
-    throw InputError(message.str());
   }
 }
 
@@ -206,7 +190,7 @@ Model build_model(const Scene& scene, const FailureCriterion* criterion) {
   }
 
   assign_strengths(scene, criterion, model);
-  check_scales(scene, model);
+  check_failure_strains(model);
   model.precut.assign(bonds, 0);
   for (std::int64_t b : bonds_crossing_precuts(lattice, scene.precuts)) {
     model.precut[b] = 1;
