@@ -66,7 +66,8 @@ void XMLCALL on_element(void* data, const XML_Char* name, const XML_Char** attri
     if (std::string(attributes[i]) != "style" || at == std::string::npos) continue;
     double r = 0, g = 0, b = 0;
     REQUIRE(std::sscanf(value.c_str() + at, "stroke:rgb(%lf%%,%lf%%,%lf%%)", &r, &g, &b) == 3);
-    ++paths.strokes[{static_cast<int>(std::lround(r * 2.55)), static_cast<int>(std::lround(g * 2.55)),
+    ++paths.strokes[{static_cast<int>(std::lround(r * 2.55)),
+                     static_cast<int>(std::lround(g * 2.55)),
                      static_cast<int>(std::lround(b * 2.55))}];
   }
 }
@@ -76,7 +77,8 @@ SvgPaths parse_svg(const std::string& text) {
   XML_Parser parser = XML_ParserCreate(nullptr);
   XML_SetUserData(parser, &paths);
   XML_SetStartElementHandler(parser, on_element);
-  const bool parsed = XML_Parse(parser, text.data(), static_cast<int>(text.size()), 1) == XML_STATUS_OK;
+  const bool parsed =
+      XML_Parse(parser, text.data(), static_cast<int>(text.size()), 1) == XML_STATUS_OK;
   INFO("expat: " << XML_ErrorString(XML_GetErrorCode(parser)) << " at line "
                  << XML_GetCurrentLineNumber(parser));
   XML_ParserFree(parser);
@@ -96,7 +98,8 @@ TEST_CASE("a broken bond's midpoint is drawn in its mode's colour, the lattice g
   CHECK(image.height == report.height);
   // Equal scales on x and z.
   CHECK((report.frame[2] - report.frame[0]) / (report.window[1] - report.window[0]) ==
-        Approx((report.frame[3] - report.frame[1]) / (report.window[3] - report.window[2])).epsilon(1e-9));
+        Approx((report.frame[3] - report.frame[1]) / (report.window[3] - report.window[2]))
+            .epsilon(1e-9));
   const Colour expected[3] = {tensile_colour, shear_colour, precut_colour};
   for (int mode = 0; mode < 3; ++mode) {
     const auto middle = bond_middle(result, bonds[mode]);
@@ -107,6 +110,26 @@ TEST_CASE("a broken bond's midpoint is drawn in its mode's colour, the lattice g
   CHECK(colour_at(image, report, 4 * render_spacing, std::sqrt(3.0) * render_spacing) ==
         rgb(lattice_colour));
   CHECK(report.broken_bonds_drawn == 3);
+}
+
+TEST_CASE("a compression run's broken bonds are drawn in their modes' colours too", "[render]") {
+  // Its lambda falls from 0: the events before the snapshot at -0.01 are at -0.005 (and
+  // the pre-cut's at 0). They were drawn as bonds without a break event.
+  ScratchDir dir;
+  std::size_t bonds[3];
+  RunResult result = patch_with_three_modes(bonds);
+  result.snapshots[0].lambda = -0.01;
+  result.summary.final_lambda = -0.01;
+  result.events[0].lambda = result.events[1].lambda = -0.005;
+  const PictureReport report =
+      render_picture(result, 0, dir.file("compressed.png"), {.width = 800});
+  const Image image = read_png(dir.file("compressed.png"));
+  const Colour expected[3] = {tensile_colour, shear_colour, precut_colour};
+  for (int mode = 0; mode < 3; ++mode) {
+    const auto middle = bond_middle(result, bonds[mode]);
+    INFO("mode " << mode);
+    CHECK(colour_at(image, report, middle[0], middle[2]) == rgb(expected[mode]));
+  }
 }
 
 TEST_CASE("the particles style draws the nodes of broken bonds red, the others grey", "[render]") {
@@ -124,7 +147,8 @@ TEST_CASE("the particles style draws the nodes of broken bonds red, the others g
   CHECK(report.broken_bonds_drawn == 0);
 }
 
-TEST_CASE("an intact lattice of particles shows no white line, however small its dots", "[render]") {
+TEST_CASE("an intact lattice of particles shows no white line, however small its dots",
+          "[render]") {
   // White inside the lattice means open bonds. With dots a few pixels apart, gaps under a
   // pixel wide once fell on the same pixel rows and drew white lines like cracks.
   ScratchDir dir;

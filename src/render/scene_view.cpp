@@ -25,11 +25,15 @@ std::string km(double metres) {
   return text;
 }
 
-// The mode of each bond's last break event at or before `lambda` (-1: none).
+// The mode of each bond's last break event at or before `lambda` along the loading (-1:
+// none). A compression run's lambda falls from 0: its events "before" a snapshot are the
+// ones at a larger lambda.
 std::vector<std::int8_t> bond_modes(const RunResult& result, double lambda) {
   std::vector<std::int8_t> modes(result.bond_count(), -1);
+  const double loading = lambda != 0 ? lambda : result.summary.final_lambda;
+  const double sense = loading < 0 ? -1.0 : 1.0;
   for (const BreakEvent& event : result.events)
-    if (event.lambda <= lambda && event.bond >= 0 &&
+    if (sense * event.lambda <= sense * lambda && event.bond >= 0 &&
         static_cast<std::size_t>(event.bond) < modes.size())
       modes[event.bond] = static_cast<std::int8_t>(event.mode);
   return modes;
@@ -165,7 +169,8 @@ void fit_window(SceneView& view, const RunResult& result, const Snapshot& snapsh
 Vec3 deformed_position(const RunResult& result, const Snapshot& snapshot, std::size_t node,
                        double exaggeration) {
   Vec3 p = reference_position(result, node);
-  for (int axis = 0; axis < 3; ++axis) p[axis] += exaggeration * snapshot.displacement[3 * node + axis];
+  for (int axis = 0; axis < 3; ++axis)
+    p[axis] += exaggeration * snapshot.displacement[3 * node + axis];
   return p;
 }
 
@@ -189,8 +194,9 @@ SceneView make_view(const RunResult& result, const Snapshot& snapshot,
     throw InputError("render: a " + std::string(name_of(view.kind)) +
                      " view needs a 3-D result; this one is 2-D (use --view section)");
   if (result.scene.dim == 2 && options.section_at)
-    throw InputError("render: a 2-D result is one x-z section; --section-y and --section-x "
-                     "apply to 3-D results");
+    throw InputError(
+        "render: a 2-D result is one x-z section; --section-y and --section-x "
+        "apply to 3-D results");
   view.spacing = node_spacing(result);
   view.exaggeration = exaggeration;
   orient(view, result, options);
@@ -218,8 +224,8 @@ SceneView make_view(const RunResult& result, const Snapshot& snapshot,
     if (view.kind != PictureView::oblique && !in_slab(view, result, a, b)) continue;
     const Vec3 middle{(deformed[a][0] + deformed[b][0]) / 2, (deformed[a][1] + deformed[b][1]) / 2,
                       (deformed[a][2] + deformed[b][2]) / 2};
-    view.broken.push_back(
-        {bond, view.project(deformed[a]), view.project(deformed[b]), view.depth(middle), modes[bond]});
+    view.broken.push_back({bond, view.project(deformed[a]), view.project(deformed[b]),
+                           view.depth(middle), modes[bond]});
   }
   if (view.kind == PictureView::oblique)
     std::stable_sort(view.broken.begin(), view.broken.end(),
