@@ -9,9 +9,9 @@
 
 #include "hard_case_checks.h"
 #include "latfrac/base/error.h"
-#include "latfrac/mechanics/random_calibration.h"
 #include "latfrac/fracture/event_source.h"
 #include "latfrac/mechanics/node_stress.h"
+#include "latfrac/mechanics/random_calibration.h"
 #include "latfrac/solvers/equilibrium.h"
 #include "scenes.h"
 
@@ -32,7 +32,8 @@ Scene lithostatic_box(int dim, bool lithostatic, double ratio = 1) {
 
 // A scene's model and the solver that owns its run.
 struct Started {
-  explicit Started(Scene s) : scene(std::move(s)), model(build_model(scene)), solver(model, scene.solver) {}
+  explicit Started(Scene s)
+      : scene(std::move(s)), model(build_model(scene)), solver(model, scene.solver) {}
   Scene scene;
   Model model;
   EquilibriumSolver solver;
@@ -40,7 +41,8 @@ struct Started {
 
 // The same box started unstressed and prestressed (K = ratio).
 struct Starts {
-  Starts(int dim, double ratio) : elastic(lithostatic_box(dim, false)), stressed(lithostatic_box(dim, true, ratio)) {}
+  Starts(int dim, double ratio)
+      : elastic(lithostatic_box(dim, false)), stressed(lithostatic_box(dim, true, ratio)) {}
   Started elastic, stressed;
 };
 
@@ -56,7 +58,8 @@ TEST_CASE("Lithostatic start: the body stands still, and its walls carry K rho g
   const Model& elastic = starts.elastic.model;
   const Model& model = starts.stressed.model;
   REQUIRE(model.has_prestress());
-  const Vector u_elastic = elastic.full_displacement(starts.elastic.solver.affine_path().at(0.0), 0.0);
+  const Vector u_elastic =
+      elastic.full_displacement(starts.elastic.solver.affine_path().at(0.0), 0.0);
   const Vector u = model.full_displacement(starts.stressed.solver.affine_path().at(0.0), 0.0);
   // The facets' forces sum to the divergence of sigma0 over each cell (the divergence
   // theorem, exact for a linear field on a polygon or polyhedron): rho g V upwards, the
@@ -79,8 +82,8 @@ TEST_CASE("Lithostatic start: the body stands still, and its walls carry K rho g
       if (lattice.on_face(n, Face::z_min)) base += reactions[n * dim + dim - 1];
       if (lattice.on_face(n, Face::x_min)) wall += reactions[n * dim];
     }
-    INFO((prestressed ? "lithostatic" : "unstressed") << " start: base " << base
-                                                      << " N, wall " << wall << " N");
+    INFO((prestressed ? "lithostatic" : "unstressed")
+         << " start: base " << base << " N, wall " << wall << " N");
     CHECK(base == Approx(rho_g * volume).epsilon(1e-9));
     const double thrust = rho_g * height * height / 2 * width;
     if (prestressed) {
@@ -130,7 +133,8 @@ TEST_CASE("Lithostatic start: extension adds to sigma0 what it adds to the unstr
   const Vector change_elastic = elastic_path.at(lambda) - elastic_path.at(0.0);
   const Vector change = path.at(lambda) - path.at(0.0);
   CHECK(max_abs(change - change_elastic) < 1e-9 * max_abs(change_elastic));
-  const std::vector<double> s1 = node_stresses(model, model.full_displacement(path.at(lambda), lambda));
+  const std::vector<double> s1 =
+      node_stresses(model, model.full_displacement(path.at(lambda), lambda));
   const std::vector<double> s0 = node_stresses(model, model.full_displacement(path.at(0.0), 0.0));
   const std::vector<double> e1 =
       node_stresses(elastic, elastic.full_displacement(elastic_path.at(lambda), lambda));
@@ -174,9 +178,11 @@ TEST_CASE("Lithostatic start with K: each bond carries its facet's traction sigm
     const Vec3 traction = area * vertical * Vec3(ratio * n.x(), ratio * n.y(), n.z());
     const Vec3 t = model.bond_tension(u, b);
     worst = std::max(worst, (t - traction).norm() / std::max(traction.norm(), 1.0));
-    largest_shear = std::max(largest_shear, (t - t.dot(n) * n).norm() / std::max(std::abs(t.dot(n)), 1.0));
+    largest_shear =
+        std::max(largest_shear, (t - t.dot(n) * n).norm() / std::max(std::abs(t.dot(n)), 1.0));
   }
-  INFO(dim << "-D: largest relative difference " << worst << ", largest shear / normal " << largest_shear);
+  INFO(dim << "-D: largest relative difference " << worst << ", largest shear / normal "
+           << largest_shear);
   CHECK(worst < 1e-12);
   // (1 - K) / 2 over (1 + K) / 2 at 45 degrees: bonds are sheared by about 0.43 of their
   // normal force.
@@ -235,9 +241,9 @@ TEST_CASE("Lithostatic start: a broken bond under compression stays a pre-compre
   // It opens where its faces have moved apart by the prestretch, -t0 / kn.
   const double opening = -sigma0 * lattice.bond_facet_area[bond] / model.normal_stiffness[bond];
   CHECK(model.prestretch[bond].dot(n0) == Approx(opening).epsilon(1e-12));
-  const PairSwitch change = model.contact_law()->next_switch(
-      model.springs(bond), PairState::closed, model.bond_displacement(u, bond), n0, 0.0,
-      10 * opening, false);
+  const PairSwitch change = model.contact_law()->next_switch(model.springs(bond), PairState::closed,
+                                                             model.bond_displacement(u, bond), n0,
+                                                             0.0, 10 * opening, false);
   REQUIRE(change.found());
   CHECK(change.to == PairState::open);
   CHECK(change.s == Approx(opening).epsilon(1e-9));
@@ -264,4 +270,54 @@ TEST_CASE("Lithostatic start: event-driven runs end in equilibrium, nothing brea
   // The body starts where it stands: the first break needs some extension.
   CHECK(result.events.front().lambda > 0);
   if (friction == 0) check_final_equilibrium(scene, result);
+}
+
+TEST_CASE(
+    "Overburden: the body stands still under p0 on its top, the supports carry it, "
+    "and every node reads sigma0",
+    "[initial_stress][random]") {
+  const int dim = GENERATE(2, 3);
+  const double ratio = GENERATE(1.0, 0.4);
+  const double p0 = 2e8;  // Pa: about 7.5 km of rock above the top
+  for (const double g : {0.0, 9.81}) {
+    Scene scene = lithostatic_box(dim, true, ratio);
+    scene.gravity->g = g;
+    scene.gravity->overburden = p0;
+    Started started(scene);
+    const Model& model = started.model;
+    const Lattice& lattice = model.lattice;
+    const Vector u = model.full_displacement(started.solver.affine_path().at(0.0), 0.0);
+    const double height = lattice.extent.z(), width = dim == 3 ? lattice.extent.y() : 1.0;
+    const double top_area = lattice.extent.x() * width;
+    INFO(dim << "-D, K = " << ratio << ", g = " << g << ": largest displacement " << max_abs(u)
+             << " m");
+    // The top's pressure meets the uniform part of the initial stress on every top cell:
+    // nothing moves (p0 H / E is metres here).
+    CHECK(max_abs(u) < 1e-9 * p0 * height / scene.material.young);
+    // The base carries the weight and the rock above; each wall K times the vertical
+    // stress integrated over its height.
+    const Vector reactions = model.reactions(u);
+    double base = 0, wall = 0;
+    for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
+      if (lattice.on_face(n, Face::z_min)) base += reactions[n * dim + dim - 1];
+      if (lattice.on_face(n, Face::x_min)) wall += reactions[n * dim];
+    }
+    const double rho_g = scene.material.density * g;
+    CHECK(base == Approx(rho_g * top_area * height + p0 * top_area).epsilon(1e-9));
+    CHECK(wall ==
+          Approx(ratio * (p0 * height + rho_g * height * height / 2) * width).epsilon(1e-9));
+    if (g != 0) continue;
+    // Without gravity sigma0 is uniform, -p0 diag(K, K, 1): every node reads it, the face
+    // nodes too (the top ones through the pressure on their face pieces, at the pieces'
+    // centroids; the others through their supports).
+    const std::vector<double> stress = node_stresses(model, u);
+    double worst = 0;
+    for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
+      const double expected[6] = {-ratio * p0, -ratio * p0, -p0, 0, 0, 0};
+      for (int k = 0; k < 6; ++k)
+        worst = std::max(worst, std::abs(stress[6 * n + k] - expected[k]));
+    }
+    INFO("worst node stress error " << worst << " Pa");
+    CHECK(worst < 1e-9 * p0);
+  }
 }

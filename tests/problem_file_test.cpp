@@ -493,6 +493,16 @@ TEST_CASE("[gravity] initial_stress: lithostatic on random lattices with small k
              Contains("gravity.stress_ratio: has no effect"));
   CHECK_THAT(error_of(random + "[gravity]\ninitial_stress = \"lithostatic\"\nstress_ratio = -1\n"),
              Contains("gravity.stress_ratio"));
+  // overburden p0 (Pa): 0 unless given, read with the lithostatic start, refused without it.
+  CHECK(parse_problem(random + "[gravity]\ninitial_stress = \"lithostatic\"\n", "t.toml")
+            .gravity->overburden == 0);
+  CHECK(parse_problem(random + "[gravity]\ninitial_stress = \"lithostatic\"\noverburden = 2e8\n",
+                      "t.toml")
+            .gravity->overburden == 2e8);
+  CHECK_THAT(error_of(random + "[gravity]\noverburden = 2e8\n"),
+             Contains("gravity.overburden: needs the lithostatic start"));
+  CHECK_THAT(error_of(random + "[gravity]\ninitial_stress = \"lithostatic\"\noverburden = -1\n"),
+             Contains("gravity.overburden"));
 }
 
 TEST_CASE("every scene says which of the two models it runs", "[io]") {

@@ -75,11 +75,12 @@ void describe_strength(const Strength& strength, Listing& out) {
             : strength.bond_stress == BondStress::tensor
                 ? "(the bond's stress tensor resolved on its direction)"
                 : "(the bond's stress tensor on the plane where f is largest)");
-  out.entry("internal_friction", strength.internal_friction,
-            strength.criterion == Criterion::tensile || strength.criterion == Criterion::drucker_prager
-                ? "(not used by this criterion)"
-            : strength.internal_friction > 0 ? "(shear strength tau0 + mu_i <-sigma_n>+)"
-                                             : "(shear strength tau0 in compression too)");
+  out.entry(
+      "internal_friction", strength.internal_friction,
+      strength.criterion == Criterion::tensile || strength.criterion == Criterion::drucker_prager
+          ? "(not used by this criterion)"
+      : strength.internal_friction > 0 ? "(shear strength tau0 + mu_i <-sigma_n>+)"
+                                       : "(shear strength tau0 in compression too)");
 }
 
 void describe_solver(const SolverOptions& solver, Listing& out) {
@@ -117,7 +118,7 @@ std::string describe(const Scene& scene) {
                    : (dim == 2 ? "(triangular)" : "(hexagonal close packed)"));
   out.entry("spacing", lattice.spacing, random ? "m (mean)" : "m");
   out.entry("size", point(lattice.size, dim), dim == 2 ? "m (x, z)" : "m (x, y, z)");
-  out.entry("next_nearest", dim == 2  ? "not used in 2-D"
+  out.entry("next_nearest", dim == 2 ? "not used in 2-D"
                             : random ? "not used by a random lattice"
                                      : on_off(lattice.next_nearest));
   out.entry("seed", random ? std::to_string(lattice.seed) : "not used by a regular lattice");
@@ -145,9 +146,12 @@ std::string describe(const Scene& scene) {
   if (scene.gravity) {
     out.section("gravity");
     out.entry("g", scene.gravity->g, "m/s^2");
-    out.entry("initial_stress", std::string(scene.gravity->lithostatic ? "lithostatic" : "elastic"));
-    if (scene.gravity->lithostatic)
+    out.entry("initial_stress",
+              std::string(scene.gravity->lithostatic ? "lithostatic" : "elastic"));
+    if (scene.gravity->lithostatic) {
       out.entry("stress_ratio", scene.gravity->stress_ratio, "(sigma0_h / sigma0_v)");
+      out.entry("overburden", scene.gravity->overburden, "Pa (on the top face)");
+    }
   } else {
     out.off("gravity");
   }
@@ -234,7 +238,8 @@ std::string describe(const Scene& scene) {
   out.entry("picture", on_off(scene.output.picture));
   if (scene.output.picture) {
     const PictureOptions& picture = scene.output.picture_options;
-    std::string shows = std::string(name_of(picture.view)) + ", " + std::string(name_of(picture.style));
+    std::string shows =
+        std::string(name_of(picture.view)) + ", " + std::string(name_of(picture.style));
     if (picture.field != NodeField::none) shows += ", field " + std::string(name_of(picture.field));
     if (picture.faults) shows += ", faults";
     if (picture.section_at)

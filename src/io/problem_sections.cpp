@@ -47,8 +47,7 @@ std::optional<double> read_poisson(const Section& s, const LatticeSpec& lattice)
   }
   const std::optional<double> nu = s.number("poisson", any_finite());
   if (nu && *nu > range.max) {
-    s.fail("poisson",
-           format_number(*nu) + " is too large: " + poisson_limit_reason(lattice),
+    s.fail("poisson", format_number(*nu) + " is too large: " + poisson_limit_reason(lattice),
            "allowed: " + range.describe("poisson"));
   }
   if (nu && *nu < range.min && lattice.kind == LatticeKind::random) {
@@ -89,10 +88,9 @@ void read_boundary(const Section& top, int dim, Scene& scene) {
 std::optional<Strength> read_strength(const Section& top) {
   const std::optional<Section> s =
       top.section("strength", {"criterion", "sigma0", "tau0", "friction_angle", "tau0_factor",
-                              "bond_stress", "internal_friction"});
+                               "bond_stress", "internal_friction"});
   if (!s) return std::nullopt;
-  const std::vector<std::string_view> criteria(criterion_names().begin(),
-                                               criterion_names().end());
+  const std::vector<std::string_view> criteria(criterion_names().begin(), criterion_names().end());
   Strength strength;
   strength.criterion = static_cast<Criterion>(s->required_choice("criterion", criteria));
   strength.sigma0 = s->required_number("sigma0", positive("Pa"));
@@ -251,9 +249,11 @@ std::vector<Layer> read_layers(const Section& top, const Scene& scene) {
 }
 
 void read_effects(const Section& top, Scene& scene) {
-  if (const auto s = top.section("gravity", {"g", "initial_stress", "stress_ratio"})) {
+  if (const auto s =
+          top.section("gravity", {"g", "initial_stress", "stress_ratio", "overburden"})) {
     scene.gravity = Gravity{s->number("g", non_negative("m/s^2"), 9.81)};
-    scene.gravity->lithostatic = s->choice("initial_stress", {"elastic", "lithostatic"}).value_or(0) == 1;
+    scene.gravity->lithostatic =
+        s->choice("initial_stress", {"elastic", "lithostatic"}).value_or(0) == 1;
     if (scene.gravity->lithostatic && scene.lattice.kind != LatticeKind::random) {
       s->fail("initial_stress",
               std::string("\"lithostatic\" on a ") +
@@ -269,6 +269,14 @@ void read_effects(const Section& top, Scene& scene) {
                 "allowed: gravity.initial_stress = \"lithostatic\", or remove stress_ratio");
       scene.gravity->stress_ratio = *ratio;
     }
+    if (const auto overburden = s->number("overburden", non_negative("Pa"))) {
+      if (!scene.gravity->lithostatic)
+        s->fail("overburden",
+                "needs the lithostatic start (the top's pressure is balanced by the bonds' "
+                "initial stress)",
+                "allowed: gravity.initial_stress = \"lithostatic\", or remove overburden");
+      scene.gravity->overburden = *overburden;
+    }
   }
   if (const auto s = top.section("contact", {"enabled", "friction", "friction_facets"})) {
     const double friction = s->number("friction", non_negative(), 0.0);
@@ -276,7 +284,8 @@ void read_effects(const Section& top, Scene& scene) {
     if (s->boolean("enabled").value_or(true)) {
       scene.contact = Contact{true, friction};
     } else if (friction > 0) {
-      s->fail("friction", "has no effect: contact.enabled is false (friction acts on closed contacts)",
+      s->fail("friction",
+              "has no effect: contact.enabled is false (friction acts on closed contacts)",
               "allowed: contact.enabled = true, or remove friction");
     }
     if (facets) {
@@ -332,9 +341,9 @@ void read_loading(const Section& top, Scene& scene) {
 }
 
 void read_solver(const Section& top, SolverOptions& solver) {
-  const auto s =
-      top.section("solver", {"method", "backend", "tolerance", "max_iterations", "ordering",
-                             "refactor_every", "relaxation_omega", "relaxation_tolerance", "relaxation_max_sweeps"});
+  const auto s = top.section(
+      "solver", {"method", "backend", "tolerance", "max_iterations", "ordering", "refactor_every",
+                 "relaxation_omega", "relaxation_tolerance", "relaxation_max_sweeps"});
   if (!s) return;
   const Range fraction{0, 1, true, true, ""};
   const std::int64_t int_max = std::numeric_limits<int>::max();

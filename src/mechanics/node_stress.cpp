@@ -24,8 +24,8 @@ void add_dyad(bool plane, Mat3& to, const Vec3& arm, const Vec3& t) {
 // component's force is what balances the node's intact bonds (`bond_force`, their force
 // on the node) and, with the loads, its weight. It goes to the piece whose normal is that
 // axis, or else (a base held along x under a basal discontinuity) to the node's first.
-void add_support_dyads(const Model& model, const std::vector<Vec3>& bond_force,
-                       bool with_loads, std::vector<Mat3>& sum) {
+void add_support_dyads(const Model& model, const std::vector<Vec3>& bond_force, bool with_loads,
+                       std::vector<Mat3>& sum) {
   const Lattice& lattice = model.lattice;
   const int dim = lattice.dim;
   const std::vector<int> axes = lattice.axes();
@@ -47,6 +47,15 @@ void add_support_dyads(const Model& model, const std::vector<Vec3>& bond_force,
     }
     first = last;
   }
+  // The overburden's pressure on the top face pieces, at their centroids (a held z is a
+  // support's, counted above).
+  if (!with_loads || model.top_pressure == 0) return;
+  for (const FacePiece& piece : pieces) {
+    if (piece.axis != 2 || !lattice.on_face(piece.node, Face::z_max)) continue;
+    if (model.dofs().free_index[piece.node * dim + (dim - 1)] < 0) continue;
+    add_dyad(dim == 2, sum[piece.node], piece.arm,
+             -model.top_pressure * piece.area * Vec3::UnitZ());
+  }
 }
 
 // What a sweep over the bonds sums for one displacement field: per node, the sum over
@@ -55,7 +64,9 @@ void add_support_dyads(const Model& model, const std::vector<Vec3>& bond_force,
 // alone: the bonds' prestretch is part of the state.
 struct DyadSums {
   DyadSums(const Model& model, const Vector& u, bool state_field, bool with_force)
-      : displacement(u), state(state_field), sum(model.lattice.node_count(), Mat3::Zero()),
+      : displacement(u),
+        state(state_field),
+        sum(model.lattice.node_count(), Mat3::Zero()),
         bond_force(with_force ? model.lattice.node_count() : 0, Vec3::Zero()) {}
   const Vector& displacement;
   bool state;
@@ -102,7 +113,8 @@ void sum_dyads(const Model& model, std::initializer_list<DyadSums*> fields) {
     for (std::int64_t b = 0; b < bonds; ++b) {
       if (!model.intact(b)) continue;
       const Bond& bond = lattice.bonds[b];
-      const Vec3 arm_i = arm_at(lattice, b, bond.i, false), arm_j = arm_at(lattice, b, bond.j, true);
+      const Vec3 arm_i = arm_at(lattice, b, bond.i, false),
+                 arm_j = arm_at(lattice, b, bond.j, true);
       for (DyadSums* field : fields) {
         const Vec3 t = tension_of(model, b, *field);
         add_at_end(plane, *field, bond.i, arm_i, t, false);
@@ -120,24 +132,27 @@ void sum_dyads(const Model& model, std::initializer_list<DyadSums*> fields) {
     }
   });
   const NodeBonds& index = model.node_bonds();
-  threads::for_blocks(lattice.node_count(), threads::node_grain, [&](std::int64_t first, std::int64_t last) {
-    for (std::int64_t n = first; n < last; ++n) {
-      for (std::int64_t k = index.start[n]; k < index.start[n + 1]; ++k) {
-        const std::int64_t b = index.entries[k] / 2;
-        if (!model.intact(b)) continue;
-        const bool end_j = index.entries[k] % 2 == 1;
-        const Vec3 arm = arm_at(lattice, b, n, end_j);
-        std::size_t f = 0;
-        for (DyadSums* field : fields) add_at_end(plane, *field, n, arm, tension[f++][b], end_j);
-      }
-    }
-  });
+  threads::for_blocks(lattice.node_count(), threads::node_grain,
+                      [&](std::int64_t first, std::int64_t last) {
+                        for (std::int64_t n = first; n < last; ++n) {
+                          for (std::int64_t k = index.start[n]; k < index.start[n + 1]; ++k) {
+                            const std::int64_t b = index.entries[k] / 2;
+                            if (!model.intact(b)) continue;
+                            const bool end_j = index.entries[k] % 2 == 1;
+                            const Vec3 arm = arm_at(lattice, b, n, end_j);
+                            std::size_t f = 0;
+                            for (DyadSums* field : fields)
+                              add_at_end(plane, *field, n, arm, tension[f++][b], end_j);
+                          }
+                        }
+                      });
 }
 
 // The Voigt stresses from one field's sums.
 std::vector<double> voigt_stresses(const Model& model, DyadSums& field, bool with_loads) {
   const Lattice& lattice = model.lattice;
-  if (!lattice.face_pieces.empty()) add_support_dyads(model, field.bond_force, with_loads, field.sum);
+  if (!lattice.face_pieces.empty())
+    add_support_dyads(model, field.bond_force, with_loads, field.sum);
   const std::vector<Mat3>& sum = field.sum;
   std::vector<double> voigt(lattice.node_count() * 6);
   const double scale = 1.0 / (2 * lattice.node_volume);

@@ -98,21 +98,31 @@ double lithostatic_stress(const Scene& scene, double g, double top, double z) {
   return -g * weight;
 }
 
+// The traction sigma0 n A on a facet (area A, unit normal n) of the initial stress
+// sigma0 = vertical diag(K, K, 1) (2-D: diag(K, 1) in x-z).
+Vec3 initial_traction(double vertical, double ratio, const Vec3& n, double area) {
+  return {ratio * vertical * n.x() * area, ratio * vertical * n.y() * area,
+          vertical * n.z() * area};
+}
+
 // The initial stress (docs/model.md, "Initial stress"): sigma0 = sigma0_v(z) diag(K, K, 1)
-// (2-D: diag(K, 1) in x-z), sigma0_v the lithostatic stress. Bond b carries its Voronoi
-// facet's traction t0 = sigma0(c_b) n0 A_b (area A_b, centroid c_b, normal n0) at zero
-// displacement: its springs are already displaced by d_b = -(t0.n0 / kn) n0 - t0_s / ks,
-// t0_s the traction's part across n0. Summed over a node's facets these forces are the
-// divergence of sigma0 over its cell (sigma0 is linear in z there), rho g V upwards: its
-// weight; sigma0's horizontal part does not vary along x and adds nothing.
+// (2-D: diag(K, 1) in x-z), sigma0_v = -p0 - the lithostatic stress of the lattice itself
+// (p0 the overburden). Bond b carries its Voronoi facet's traction t0 = sigma0(c_b) n0 A_b
+// (area A_b, centroid c_b, normal n0) at zero displacement: its springs are already
+// displaced by d_b = -(t0.n0 / kn) n0 - t0_s / ks, t0_s the traction's part across n0.
+// Summed over a node's facets these forces are the divergence of sigma0 over its cell
+// (sigma0 is linear in z there), rho g V upwards: its weight; sigma0's horizontal part
+// does not vary along x and adds nothing.
 void set_lithostatic_prestress(const Scene& scene, Model& model) {
   const Lattice& lattice = model.lattice;
   const double g = scene.gravity->g;
   const double ratio = scene.gravity->stress_ratio;
+  const double overburden = scene.gravity->overburden;
   const double top = lattice.extent.z();
   model.prestretch.resize(lattice.bond_count());
   for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
-    const double vertical = lithostatic_stress(scene, g, top, lattice.bond_facet_centroid[b].z());
+    const double vertical =
+        lithostatic_stress(scene, g, top, lattice.bond_facet_centroid[b].z()) - overburden;
     const Vec3& n = lattice.bond_direction[b];
     const double area = lattice.bond_facet_area[b];
     if (ratio == 1) {
@@ -121,8 +131,7 @@ void set_lithostatic_prestress(const Scene& scene, Model& model) {
       model.prestretch[b] = (-vertical * area / model.normal_stiffness[b]) * n;
       continue;
     }
-    const Vec3 traction{ratio * vertical * n.x() * area, ratio * vertical * n.y() * area,
-                        vertical * n.z() * area};
+    const Vec3 traction = initial_traction(vertical, ratio, n, area);
     const double normal = traction.dot(n);
     const Vec3 shear = traction - normal * n;
     Vec3 d = -(normal / model.normal_stiffness[b]) * n;
@@ -138,7 +147,25 @@ void set_lithostatic_prestress(const Scene& scene, Model& model) {
   model.initial_stress_ratio = ratio;
   model.node_initial_stress.resize(lattice.node_count());
   for (std::int64_t n = 0; n < lattice.node_count(); ++n)
-    model.node_initial_stress[n] = lithostatic_stress(scene, g, top, lattice.positions[n].z());
+    model.node_initial_stress[n] =
+        lithostatic_stress(scene, g, top, lattice.positions[n].z()) - overburden;
+}
+
+// The overburden p0 pushes on the top face: each top face piece (the part of the top that
+// closes a node's Voronoi cell, area A) carries -p0 A e_z. With the initial stress's
+// uniform part, -p0 diag(K, K, 1), the top nodes then stand still as the others do. A top
+// node held along z hands its share to its support.
+void add_overburden_load(const Scene& scene, Model& model) {
+  model.top_pressure = scene.gravity->overburden;
+  if (model.top_pressure == 0) return;
+  const Lattice& lattice = model.lattice;
+  const int dim = lattice.dim;
+  for (const FacePiece& piece : lattice.face_pieces) {
+    if (piece.axis != 2 || !lattice.on_face(piece.node, Face::z_max)) continue;
+    const std::int64_t dof = piece.node * dim + (dim - 1);
+    if (model.dofs().free_index[dof] >= 0)
+      model.external_force[dof] -= model.top_pressure * piece.area;
+  }
 }
 
 }  // namespace
@@ -223,6 +250,7 @@ Model build_model(const Scene& scene, const FailureCriterion* criterion) {
       throw InputError(
           "gravity.initial_stress = \"lithostatic\" needs a random lattice and small kinematics");
     set_lithostatic_prestress(scene, model);
+    add_overburden_load(scene, model);
   }
   std::unique_ptr<BondLaw> bond_law;
   if (scene.large_kinematics) {

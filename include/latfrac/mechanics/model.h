@@ -41,6 +41,9 @@ class Model {
   std::vector<Vec3> prestretch;
   std::vector<double> node_initial_stress;
   double initial_stress_ratio = 1;
+  // A pressure on the top face (Pa; gravity.overburden): each top face piece of a random
+  // lattice carries -p A e_z at its centroid, in external_force and in the node stresses.
+  double top_pressure = 0;
 
   int dim() const { return lattice.dim; }
   const DofMap& dofs() const { return dofs_; }
@@ -62,8 +65,7 @@ class Model {
   // Can bond b's faces touch once it is broken (a nearest-neighbour, Delaunay or pre-cut
   // bond, in a scene with contact)?
   bool can_touch(std::int64_t bond) const {
-    return has_contact() &&
-           (lattice.bonds[bond].kind != BondKind::next_nearest || precut[bond]);
+    return has_contact() && (lattice.bonds[bond].kind != BondKind::next_nearest || precut[bond]);
   }
   // Is bond b broken and able to touch (so its contact law acts)?
   bool contact_capable(std::int64_t bond) const { return !intact(bond) && can_touch(bond); }

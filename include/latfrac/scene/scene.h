@@ -37,6 +37,10 @@ struct Gravity {
   // With `lithostatic`: K, the initial horizontal stress over the vertical (1: isotropic;
   // below 1 an Andersonian state with sigma1 vertical, docs/model.md, "Initial stress").
   double stress_ratio = 1;
+  // With `lithostatic`: p0 (Pa), the weight of rock above the lattice's top, as a pressure
+  // on the top face and in the initial stress: sigma0_v = -(p0 + the lattice's own weight
+  // above). A confined specimen, or a section of deeper crust (docs/model.md).
+  double overburden = 0;
 };
 
 struct Loading {
@@ -70,9 +74,9 @@ struct Heterogeneity {
 };
 
 struct Output {
-  std::vector<double> snapshots;  // lambda values at which to store a snapshot
-  double exaggeration = 1;        // displacement magnification in pictures
-  bool picture = true;            // write a picture of the final state
+  std::vector<double> snapshots;       // lambda values at which to store a snapshot
+  double exaggeration = 1;             // displacement magnification in pictures
+  bool picture = true;                 // write a picture of the final state
   std::string picture_format = "png";  // its file's extension: png, svg or pdf
   PictureOptions picture_options;      // what it shows
 };
