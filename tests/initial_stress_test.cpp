@@ -321,3 +321,12 @@ TEST_CASE(
     CHECK(worst < 1e-9 * p0);
   }
 }
+
+TEST_CASE("Overburden: a scene built in code without the lithostatic start is refused",
+          "[initial_stress]") {
+  // Without the bonds' initial stress nothing would balance the top's pressure: the
+  // reader refuses such a file, and so does the model builder.
+  Scene scene = lithostatic_box(2, false);
+  scene.gravity->overburden = 1e8;
+  CHECK_THROWS_WITH(build_model(scene), Catch::Contains("gravity.overburden"));
+}

@@ -51,7 +51,7 @@ void add_support_dyads(const Model& model, const std::vector<Vec3>& bond_force, 
   // support's, counted above).
   if (!with_loads || model.top_pressure == 0) return;
   for (const FacePiece& piece : pieces) {
-    if (piece.axis != 2 || !lattice.on_face(piece.node, Face::z_max)) continue;
+    if (!lattice.on_top(piece)) continue;
     if (model.dofs().free_index[piece.node * dim + (dim - 1)] < 0) continue;
     add_dyad(dim == 2, sum[piece.node], piece.arm,
              -model.top_pressure * piece.area * Vec3::UnitZ());

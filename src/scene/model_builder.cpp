@@ -161,7 +161,7 @@ void add_overburden_load(const Scene& scene, Model& model) {
   const Lattice& lattice = model.lattice;
   const int dim = lattice.dim;
   for (const FacePiece& piece : lattice.face_pieces) {
-    if (piece.axis != 2 || !lattice.on_face(piece.node, Face::z_max)) continue;
+    if (!lattice.on_top(piece)) continue;
     const std::int64_t dof = piece.node * dim + (dim - 1);
     if (model.dofs().free_index[dof] >= 0)
       model.external_force[dof] -= model.top_pressure * piece.area;
@@ -245,6 +245,8 @@ Model build_model(const Scene& scene, const FailureCriterion* criterion) {
                      "times a node's volume overflows); allowed: a g whose weights are finite, "
                      "as any physical g's are");
   }
+  if (scene.gravity && scene.gravity->overburden != 0 && !scene.gravity->lithostatic)
+    throw InputError("gravity.overburden needs gravity.initial_stress = \"lithostatic\"");
   if (scene.gravity && scene.gravity->lithostatic) {
     if (!lattice.is_random() || scene.large_kinematics)
       throw InputError(

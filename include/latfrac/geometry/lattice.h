@@ -98,6 +98,10 @@ class Lattice {
   bool on_face(std::int64_t node, Face face) const {
     return face_mask[node] & (1u << static_cast<int>(face));
   }
+  // Whether a face piece is a piece of the top face (z = the lattice's height).
+  bool on_top(const FacePiece& piece) const {
+    return piece.axis == 2 && on_face(piece.node, Face::z_max);
+  }
   // The axes that carry degrees of freedom: {x, z} in 2-D, {x, y, z} in 3-D.
   std::vector<int> axes() const {
     return dim == 2 ? std::vector<int>{0, 2} : std::vector<int>{0, 1, 2};
