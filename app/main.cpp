@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -274,6 +275,23 @@ int study_command(const std::string& problem, const std::vector<std::string>& se
   return 0;
 }
 
+// The snapshot nearest the requested lambda (the last when none was requested). When the
+// nearest is not at the requested lambda, says so on stderr (stdout may be JSON), with the
+// lambdas the result holds: a silent substitution would be read as the requested state.
+std::size_t chosen_snapshot(const RunResult& result, double lambda) {
+  const std::size_t index = snapshot_nearest(result, lambda);
+  const double found = result.snapshots[index].lambda;
+  if (std::isnan(lambda) || std::abs(found - lambda) <= 1e-9 * std::max(1e-12, std::abs(lambda)))
+    return index;
+  std::ostringstream held;
+  for (std::size_t k = 0; k < result.snapshots.size(); ++k)
+    held << (k ? ", " : "") << result.snapshots[k].lambda;
+  std::cerr << "latfrac: no snapshot at lambda " << lambda << "; using the nearest, lambda "
+            << found << " (the result holds " << held.str()
+            << "; more with output.snapshots in the problem file)\n";
+  return index;
+}
+
 int analyze_command(const std::string& path, bool json, double lambda) {
   // 1. Read the result; 2. analyse the faults of the chosen snapshot; 3. print.
   const RunResult result = read_result_file(path);
@@ -281,7 +299,7 @@ int analyze_command(const std::string& path, bool json, double lambda) {
     std::cout << summary_text(result) << "fault analysis: the result holds no snapshot\n";
     return 0;
   }
-  const FaultReport report = analyze_faults(result, snapshot_nearest(result, lambda));
+  const FaultReport report = analyze_faults(result, chosen_snapshot(result, lambda));
   if (json) {
     const RunSummary& s = result.summary;
     std::printf(
@@ -332,7 +350,7 @@ int render_command(const std::string& path, double lambda, const std::string& pi
                    const PictureOptions& options) {
   picture_format_of(picture);  // an unsupported extension is refused before reading
   const RunResult result = read_result_file(path);
-  const std::size_t index = snapshot_nearest(result, lambda);
+  const std::size_t index = chosen_snapshot(result, lambda);
   render_picture(result, index, picture, options);
   std::cout << "wrote " << picture << " (lambda " << result.snapshots[index].lambda << ")\n";
   return 0;

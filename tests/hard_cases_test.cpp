@@ -307,6 +307,14 @@ TEST_CASE("Hard: scales that overflow are refused before any solve, with the key
   // g = 1e300: the weights (2600 x 1e300 x a cell's 8.7e5 m^2) overflow to inf.
   CHECK_THROWS_WITH(run_scene(scene_with([](Scene& s) { s.gravity->g = 1e300; }), quiet()),
                     Catch::Contains("gravity.g = 1e+300") && Catch::Contains("not finite"));
+  // A density of 1e300 kg/m^3: each weight is finite (1e300 x 9.81 x 8.7e5 m^2 = 8.5e306
+  // N/m), their squares are not; it failed in the first solve with a conditioning error
+  // that named no key. 1e140 kg/m^3 (weights 1e146, squares 1e292) builds.
+  CHECK_THROWS_WITH(
+      run_scene(scene_with([](Scene& s) { s.material.density = 1e300; }), quiet()),
+      Catch::Contains("material.density = 1e+300") && Catch::Contains("not finite"));
+  CHECK(build_model(scene_with([](Scene& s) { s.material.density = 1e140; }))
+            .external_force.allFinite());
   // The unchanged scene builds, its weights finite.
   CHECK(build_model(scene_with([](Scene&) {})).external_force.allFinite());
 }

@@ -2,6 +2,7 @@
 #include "latfrac/scene/model_builder.h"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <random>
 #include <sstream>
@@ -236,14 +237,17 @@ Model build_model(const Scene& scene, const FailureCriterion* criterion) {
           -material.density * scene.gravity->g * lattice.volume_of(n);
     }
   }
-  if (scene.gravity && !model.external_force.allFinite()) {
-    // A weight beyond the doubles' range would carry inf, then NaN, into every solve.
-    std::ostringstream g;
-    g << scene.gravity->g;
-    throw InputError("gravity.g = " + g.str() +
-                     " m/s^2 gives nodes' weights that are not finite numbers (density times g "
-                     "times a node's volume overflows); allowed: a g whose weights are finite, "
-                     "as any physical g's are");
+  if (scene.gravity && !std::isfinite(model.external_force.squaredNorm())) {
+    // A weight beyond the doubles' range would carry inf, then NaN, into every solve; so
+    // would weights whose squares overflow in the residual's norm (a density of 1e300
+    // kg/m^3 failed in the first solve with a conditioning error that named no key).
+    std::ostringstream message;
+    message << "gravity.g = " << scene.gravity->g << " m/s^2 and material.density = "
+            << scene.material.density
+            << " kg/m^3 give nodes' weights whose squares are not finite numbers (density "
+               "times g times a node's volume overflows); allowed: weights that are finite "
+               "when squared, as any physical density's and g's are";
+    throw InputError(message.str());
   }
   if (scene.gravity && scene.gravity->overburden != 0 && !scene.gravity->lithostatic)
     throw InputError("gravity.overburden needs gravity.initial_stress = \"lithostatic\"");

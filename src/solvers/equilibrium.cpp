@@ -537,6 +537,12 @@ std::string EquilibriumSolver::ill_conditioned(const Vector& free_displacement, 
     message << "; the weakest pivot is " << weakest.ratio << " of its diagonal, at "
             << describe_unknown(weakest.column);
   }
+  if (!std::isfinite(residual)) {
+    // No tolerance helps: inf or NaN came out of the solve (the scales overflowed).
+    message << ": the solve gave numbers that are not finite; check the scene's scales "
+               "(material, strength, gravity and loading values against each other)";
+    return message.str();
+  }
   message << ": the stiffness is too ill-conditioned (part of the body nearly free, or "
              "hanging on a few bonds). Try: contact.enabled = true; less breaking (a smaller "
              "heterogeneity.spread or gravity.g, a smaller stepping.increment); "
