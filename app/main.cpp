@@ -14,6 +14,8 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <new>
+#include <stdexcept>
 #include <optional>
 #include <sstream>
 
@@ -474,6 +476,19 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const InputError& e) {
     return failed(e, 2);
+  } catch (const std::bad_alloc&) {
+    // Allocation failed or a size exceeded what a vector can hold: a scene too large for
+    // this machine (run refuses those unless --force), or a factor that filled in beyond
+    // memory. std::bad_alloc's own text says none of that.
+    return failed(std::runtime_error("out of memory: the run needed more memory than this "
+                                     "machine could give (`latfrac check` estimates a scene's "
+                                     "needs; a larger lattice.spacing needs less)"),
+                  1);
+  } catch (const std::length_error& e) {
+    return failed(std::runtime_error(std::string("out of memory: an array would exceed what "
+                                                 "memory can hold (") +
+                                     e.what() + "); a larger lattice.spacing needs less"),
+                  1);
   } catch (const std::exception& e) {
     return failed(e, 1);
   }

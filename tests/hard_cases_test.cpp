@@ -309,12 +309,25 @@ TEST_CASE("Hard: scales that overflow are refused before any solve, with the key
                     Catch::Contains("gravity.g = 1e+300") && Catch::Contains("not finite"));
   // A density of 1e300 kg/m^3: each weight is finite (1e300 x 9.81 x 8.7e5 m^2 = 8.5e306
   // N/m), their squares are not; it failed in the first solve with a conditioning error
-  // that named no key. 1e140 kg/m^3 (weights 1e146, squares 1e292) builds.
+  // that named no key. 1e140 kg/m^3 (weights 1e146, squares 1e292) is refused by
+  // gravity's strain below (1e134); by hand, 1e17 kg/m^3 makes 1.0e11 and builds.
   CHECK_THROWS_WITH(
       run_scene(scene_with([](Scene& s) { s.material.density = 1e300; }), quiet()),
       Catch::Contains("material.density = 1e+300") && Catch::Contains("not finite"));
-  CHECK(build_model(scene_with([](Scene& s) { s.material.density = 1e140; }))
+  CHECK_THROWS_WITH(build_model(scene_with([](Scene& s) { s.material.density = 1e140; })),
+                    Catch::Contains("material.density = 1e+140") && Catch::Contains("strain of 1.0"));
+  CHECK(build_model(scene_with([](Scene& s) { s.material.density = 1e17; }))
             .external_force.allFinite());
+  // A modulus of 1e-300 Pa under gravity: the displacements, gravity's strain 2600 x 9.81
+  // x 10.4 km / 1e-300 = 2.6e308 times the height, overflow (NaN in the first solve, with an
+  // error about conditioning). 1e-30 Pa (strain 2.6e38) ran; refused beyond 1e12: by hand,
+  // 2600 x 9.81 x 10.4 km = 2.65e8 Pa, so E = 1e-4 Pa (2.65e12) is refused, 1e-3 Pa builds.
+  CHECK_THROWS_WITH(run_scene(scene_with([](Scene& s) { s.material.young = 1e-300; }), quiet()),
+                    Catch::Contains("material.young = 1e-300 Pa") && Catch::Contains("gravity.g = 9.81") &&
+                        Catch::Contains("up to 1e12"));
+  CHECK_THROWS_WITH(build_model(scene_with([](Scene& s) { s.material.young = 1e-4; })),
+                    Catch::Contains("strain of 2.6"));
+  CHECK(build_model(scene_with([](Scene& s) { s.material.young = 1e-3; })).external_force.allFinite());
   // The unchanged scene builds, its weights finite.
   CHECK(build_model(scene_with([](Scene&) {})).external_force.allFinite());
 }

@@ -106,6 +106,32 @@ Vec3 initial_traction(double vertical, double ratio, const Vec3& n, double area)
           vertical * n.z() * area};
 }
 
+// Gravity's strain at the base, (rho g H + p0) / E with E the softest material's modulus,
+// is bounded by 1e12, as failure strains are from below (check_failure_strains): the
+// displacements, about that strain times H, then stay far inside the doubles' range. A
+// young of 1e-300 Pa made them overflow (NaN in the first solve, with an error about
+// conditioning that named no key). The crust's is about 0.008 (2600 kg/m^3, 9.81 m/s^2,
+// 30 km, 100 GPa); a soft layer of 1e7 Pa under 8 km has 20 and runs (hard-case tests).
+void check_gravity_strain(const Scene& scene, double top) {
+  constexpr double largest_gravity_strain = 1e12;
+  const double base_stress =
+      -lithostatic_stress(scene, scene.gravity->g, top, 0.0) + scene.gravity->overburden;
+  double softest = scene.material.young;
+  for (const Layer& layer : scene.layers) softest = std::min(softest, layer.material.young);
+  const double strain = base_stress / softest;
+  if (std::abs(strain) <= largest_gravity_strain) return;
+  std::ostringstream message;
+  message << "gravity's stress at the base, " << base_stress << " Pa (material.density = "
+          << scene.material.density << " kg/m^3" << (scene.layers.empty() ? "" : " and the layers'")
+          << ", gravity.g = " << scene.gravity->g
+          << " m/s^2 over the height, plus gravity.overburden), against material.young = "
+          << softest << " Pa" << (scene.layers.empty() ? "" : " (the softest layer's)")
+          << " is a strain of " << strain
+          << ", which makes the displacements overflow; allowed: strains rho g H / E up to "
+             "1e12 (the crust's is about 0.008)";
+  throw InputError(message.str());
+}
+
 // The initial stress (docs/model.md, "Initial stress"): sigma0 = sigma0_v(z) diag(K, K, 1)
 // (2-D: diag(K, 1) in x-z), sigma0_v = -p0 - the lithostatic stress of the lattice itself
 // (p0 the overburden). Bond b carries its Voronoi facet's traction t0 = sigma0(c_b) n0 A_b
@@ -249,6 +275,7 @@ Model build_model(const Scene& scene, const FailureCriterion* criterion) {
                "when squared, as any physical density's and g's are";
     throw InputError(message.str());
   }
+  if (scene.gravity) check_gravity_strain(scene, lattice.extent.z());
   if (scene.gravity && scene.gravity->overburden != 0 && !scene.gravity->lithostatic)
     throw InputError("gravity.overburden needs gravity.initial_stress = \"lithostatic\"");
   if (scene.gravity && scene.gravity->lithostatic) {
