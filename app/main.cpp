@@ -468,6 +468,12 @@ int main(int argc, char** argv) {
     if (*study)
       return study_command(problem, sets, increments, out_dir, relaxation, quiet, force,
                            joined(argc, argv));
+    // NaN stands for "not given" inside; a given --lambda must be a finite loading (inf
+    // picked the first snapshot, nan the last, both silently).
+    for (const CLI::App* command : {analyze, render})
+      if (*command && command->count("--lambda") > 0 && !std::isfinite(lambda))
+        throw InputError("--lambda must be a finite number (a loading, strain), got " +
+                         command->get_option("--lambda")->as<std::string>());
     if (*analyze) return analyze_command(result_path, json, lambda);
     if (*render)
       return render_command(result_path, lambda, png,
