@@ -218,6 +218,26 @@ TEST_CASE("A run this version cannot make is a row, not a failed study", "[study
   }
 }
 
+TEST_CASE("An increment that would take more than 1e9 steps is refused before the reference",
+          "[study]") {
+  // 1e-300 used to overflow the step counter: no step, 0 breaks, a row that looked real.
+  const Scene scene = strip_scene();
+  StudyOptions options;
+  options.increments = {1e-3, 1e-300};
+  std::vector<StudyRow> rows;
+  options.on_row = [&](const StudyRow& row) { rows.push_back(row); };
+  CHECK_THROWS_WITH(run_study(scene, options),
+                    Contains("--increments: the increment = 1e-300") && Contains("at most 1e9"));
+  CHECK(rows.empty());  // refused before the reference ran
+  // run_scene refuses it too (a scene built in code); by hand, |total| / 1e9 is the
+  // smallest increment allowed: a hair above it passes, a hair below it does not.
+  Scene fixed = scene;
+  fixed.stepping = {SteppingMethod::fixed, 1e-300};
+  CHECK_THROWS_WITH(run_scene(fixed, RunOptions{}), Contains("stepping.increment = 1e-300"));
+  CHECK_NOTHROW(check_step_count(fixed.loading.total, std::abs(fixed.loading.total) / 0.999e9, "x"));
+  CHECK_THROWS(check_step_count(fixed.loading.total, std::abs(fixed.loading.total) / 1.001e9, "x"));
+}
+
 TEST_CASE("The broken-set difference on hand-made sets", "[study]") {
   CHECK(broken_set_difference({1, 2, 3}, {2, 3, 4}) == Approx(2.0 / 3.0));
   CHECK(broken_set_difference({1, 2, 3}, {1, 2, 3}) == 0);

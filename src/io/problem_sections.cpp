@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "latfrac/criteria/criterion.h"
 #include "latfrac/mechanics/friction_law.h"
@@ -340,6 +341,15 @@ void read_loading(const Section& top, Scene& scene) {
       s->fail_missing("increment", "method \"fixed\" needs increment > 0 (strain), e.g. 1e-3");
     }
     scene.stepping.increment = increment.value_or(0);
+    // The same bound as run_scene's (max_fixed_steps), here with the file's line.
+    if (scene.stepping.method == SteppingMethod::fixed &&
+        std::abs(scene.loading.total) / *increment > 1e9) {
+      std::ostringstream steps;
+      steps << std::abs(scene.loading.total) / *increment << " fixed steps to loading.total = "
+            << scene.loading.total;
+      s->fail("increment", "makes " + steps.str(),
+              "allowed: at most 1e9 steps (increment >= |loading.total| / 1e9)");
+    }
   }
 }
 

@@ -124,6 +124,16 @@ std::vector<std::string> unsupported_effects(const Scene& scene) {
   return missing;
 }
 
+void check_step_count(double total, double increment, const std::string& what) {
+  const double steps = std::abs(total) / increment;
+  if (steps <= max_fixed_steps) return;
+  std::ostringstream message;
+  message << what << " = " << increment << " makes " << steps << " fixed steps to loading.total = "
+          << total << "; allowed: at most 1e9 steps (an increment of at least "
+          << std::abs(total) / max_fixed_steps << ")";
+  throw InputError(message.str());
+}
+
 RunResult run_scene(const Scene& scene, const RunOptions& options) {
   if (const auto missing = unsupported_effects(scene); !missing.empty()) {
     std::string list;
@@ -137,6 +147,9 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
         ": solver.method = \"relaxation\" works with the fixed-step "
         "method only (stepping.method = \"fixed\"): events need the exact affine path");
   }
+  if (scene.stepping.method == SteppingMethod::fixed)
+    check_step_count(scene.loading.total, scene.stepping.increment,
+                     (scene.source_path.empty() ? "" : scene.source_path + ": ") + "stepping.increment");
   const auto start = std::chrono::steady_clock::now();
   // A checkpoint written before the run began is continued by starting afresh.
   const ResumePoint* resume =

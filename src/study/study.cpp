@@ -152,6 +152,12 @@ StudyResult run_study(const Scene& scene, const StudyOptions& options) {
     if (options.on_row) options.on_row(row);
   };
 
+  // Every increment is checked before the reference runs, which may take long.
+  for (const double increment : options.increments)
+    check_step_count(scene.loading.total, increment, "--increments: the increment");
+  if (options.reference_increment)
+    check_step_count(scene.loading.total, *options.reference_increment, "the reference increment");
+
   // 1. The reference: event-driven, or fixed-step at a fine increment when asked.
   ReferenceFacts facts;
   {
