@@ -142,9 +142,13 @@ int run_command(const RunRequest& request) {
     throw InputError("run: a problem file is required (or --resume RESULT.h5)");
   if (!request.resume.empty() && !request.out_dir.empty())
     throw InputError("run: --resume continues in the result file's directory; leave out -o");
-  if (request.checkpoint_minutes < 0)
-    throw InputError("--checkpoint-every: " + std::to_string(request.checkpoint_minutes) +
-                     " is negative; allowed: minutes >= 0 (0: only when stopping)");
+  if (!(request.checkpoint_minutes >= 0)) {  // negative, or nan (which compares false)
+    std::ostringstream value;
+    value << request.checkpoint_minutes;
+    throw InputError("--checkpoint-every: " + value.str() + " is " +
+                     (std::isnan(request.checkpoint_minutes) ? "not a number" : "negative") +
+                     "; allowed: minutes >= 0 (0: only when stopping)");
+  }
   ResumePoint point;
   const bool resuming = !request.resume.empty();
   const Scene scene =
