@@ -163,6 +163,13 @@ TEST_CASE("a 3-D section shows the layer at the chosen y or x", "[render]") {
   CHECK_THROWS_WITH(render_picture(result, 0, dir.file("out.png"), options),
                     Catch::Contains("outside the block"));
   CHECK_FALSE(std::filesystem::exists(dir.file("out.png")));
+  // A plane given to a view that draws the whole block was ignored without a word.
+  for (const PictureView view : {PictureView::map, PictureView::oblique}) {
+    options = {.view = view, .section_at = render_spacing};
+    CHECK_THROWS_WITH(render_picture(result, 0, dir.file("out.png"), options),
+                      Catch::Contains("choose the plane of a section view"));
+    CHECK_FALSE(std::filesystem::exists(dir.file("out.png")));
+  }
 }
 
 TEST_CASE("the map shows the top layer's broken bonds seen from above", "[render]") {

@@ -32,6 +32,11 @@ void read_section(const Section& s, const LatticeSpec& lattice, PictureOptions& 
   if (lattice.dim != 3)
     s.fail(key, "only applies in 3-D (a 2-D run is one section)",
            "allowed: remove it, or set lattice.dim = 3");
+  if (picture.view != PictureView::section)
+    s.fail(key,
+           "chooses the plane of a section view; picture_view \"" +
+               std::string(name_of(picture.view)) + "\" draws the whole block",
+           "allowed: picture_view = \"section\", or remove it");
   const double extent = lattice.size[y ? 1 : 0];
   picture.section_axis = y ? SectionAxis::y : SectionAxis::x;
   picture.section_at = s.number(key, {0, extent, false, false, "m, inside the block"});

@@ -197,6 +197,10 @@ SceneView make_view(const RunResult& result, const Snapshot& snapshot,
     throw InputError(
         "render: a 2-D result is one x-z section; --section-y and --section-x "
         "apply to 3-D results");
+  if (view.kind != PictureView::section && options.section_at)
+    throw InputError("render: --section-y and --section-x choose the plane of a section view; "
+                     "the " + std::string(name_of(view.kind)) +
+                     " view draws the whole block (use --view section, or leave them out)");
   view.spacing = node_spacing(result);
   view.exaggeration = exaggeration;
   orient(view, result, options);
