@@ -163,7 +163,15 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   const std::shared_ptr<const FailureCriterion> criterion =
       scene.strength ? make_criterion(*scene.strength, scene.lattice.dim) : nullptr;
   if (criterion) result.scene.criterion = to_string(scene.strength->criterion);
-  Model model = build_model(scene, criterion.get());
+  // The model's own checks (scales, initial stress) name keys, not lines: say the file.
+  Model model = [&] {
+    try {
+      return build_model(scene, criterion.get());
+    } catch (const InputError& e) {
+      if (scene.source_path.empty()) throw;
+      throw InputError(scene.source_path + ": " + e.what());
+    }
+  }();
   record_lattice(model, result);
   result.fragments = prepare_supports(model, scene.source_path);
   double wall_before = 0;
