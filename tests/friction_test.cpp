@@ -103,7 +103,7 @@ struct Driver {
         evaluator(strength, model),
         breaking(equilibrium, settling, evaluator, progress, result),
         breaks(equilibrium, evaluator, breaking),
-        switches(equilibrium, settling, breaking) {}
+        switches(equilibrium, settling) {}
   void follow(double from, double to) {
     std::vector<PairState> before = equilibrium.model().pair_states();
     follow_events(equilibrium, {&breaks, &switches}, from, to, [](double) {},

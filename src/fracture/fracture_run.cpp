@@ -179,7 +179,7 @@ void FractureRun::fixed_steps() {
 void FractureRun::event_driven() {
   PathStressCache stresses(equilibrium_, evaluator_);
   BreakSource breaks(equilibrium_, evaluator_, breaking_, &stresses);
-  PairSwitchSource switches(equilibrium_, settling_, breaking_);
+  PairSwitchSource switches(equilibrium_, settling_);
   equilibrium_.want_paths(true);
   // After a change the new path is at hand, and the crossing search reads its stresses
   // next: the cascade's screen reads them first (FailureEvaluator::may_fail_at), and the

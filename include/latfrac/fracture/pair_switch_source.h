@@ -1,7 +1,8 @@
 // Contact switches as events: the first pair whose law switches its state on the current
 // affine path (a contact opening or closing, contact_law.h).
 //
-// At a switch the pair changes state, the contacts are settled and the cascade runs. Two
+// At a switch the pair changes state and the contacts are settled; a bond this brings to
+// f >= 1 breaks as the next event, at the same lambda (event_loop.h). Two
 // switches at one lambda (ties, or a contact already at dn = 0) are taken one after the
 // other. Should they bring back a set of closed contacts already met at that lambda, they
 // cycle: this source then stops proposing switches at the lambda it stands at (the rest
@@ -36,8 +37,8 @@ namespace latfrac {
 
 class PairSwitchSource final : public EventSource {
  public:
-  PairSwitchSource(EquilibriumState& equilibrium, PairSettling& settling, Breaking& breaking)
-      : equilibrium_(equilibrium), settling_(settling), breaking_(breaking) {}
+  PairSwitchSource(EquilibriumState& equilibrium, PairSettling& settling)
+      : equilibrium_(equilibrium), settling_(settling) {}
   double propose(const AffinePath& path, double from, double to) override;
   void reached(double lambda) override;
   void take(double lambda) override;
@@ -50,7 +51,6 @@ class PairSwitchSource final : public EventSource {
  private:
   EquilibriumState& equilibrium_;
   PairSettling& settling_;
-  Breaking& breaking_;
   PairChange proposed_{-1, PairState::open};
   // The sets of closed contacts met at the current lambda, and whether switches at the
   // path's start are still proposed there.
