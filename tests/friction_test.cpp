@@ -162,6 +162,28 @@ TEST_CASE("Friction: a pushed block slips where |Ft| = mu Fn, sticks again on un
   CHECK(run.solver.counters().coupled_solves > 0);
 }
 
+TEST_CASE("A bond already at f >= 1 where the events resume breaks there, as the next event",
+          "[friction][event]") {
+  // A contact switch runs no cascade (pair_switch_source.h): should rounding leave a bond at
+  // f >= 1 at the switch, the break source's next crossing is that lambda itself. Here the
+  // bond is put past f = 1 by hand, in the slipping block: its pusher spring carries
+  // mu P = 5e5 N of tension, against a strength of 1 Pa.
+  Block block;
+  Driver run(block.model, strength_of(Criterion::tensile, 1e30));
+  const double onset = Block::mu * Block::P * (Block::ks_c + Block::kn2) / (Block::ks_c * Block::kn2);
+  const double at = 2 * onset;
+  run.follow(0, at);
+  REQUIRE(block.model.state(0) == PairState::slip);
+  REQUIRE(run.result.events.empty());
+  block.model.bond_sigma0[1] = 1.0;
+  run.follow(at, 2 * at);
+  REQUIRE(run.result.events.size() == 1);
+  CHECK(run.result.events[0].bond == 1);
+  CHECK(run.result.events[0].lambda == at);  // exactly where the events resumed
+  CHECK(run.result.events[0].failure_index > 1);
+  CHECK_FALSE(block.model.intact(1));
+}
+
 namespace {
 
 // The 3-D block: node 0 (the plane) fixed at the origin; node 1 (the block) 1 m above it,
