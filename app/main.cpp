@@ -15,9 +15,9 @@
 #include <iostream>
 #include <limits>
 #include <new>
-#include <stdexcept>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include "latfrac/analysis/fault_analysis.h"
 #include "latfrac/base/error.h"
@@ -490,8 +490,8 @@ int main(int argc, char** argv) {
     // Allocation failed or a size exceeded what a vector can hold: a scene too large for
     // this machine (run refuses those unless --force), or a factor that filled in beyond
     // memory. std::bad_alloc's own text says none of that.
-    return failed(std::runtime_error("out of memory: the run needed more memory than this "
-                                     "machine could give (`latfrac check` estimates a scene's "
+    return failed(std::runtime_error("out of memory: latfrac needed more memory than this "
+                                     "machine could give (`latfrac check` estimates a run's "
                                      "needs; a larger lattice.spacing needs less)"),
                   1);
   } catch (const std::length_error& e) {

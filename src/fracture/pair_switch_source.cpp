@@ -61,7 +61,8 @@ void PairSwitchSource::take(double lambda) {
   // No cascade here: a bond that the switch brought to f >= 1 is the break source's next
   // event, at this lambda (its crossing is `from` when f(from) >= 1), and breaks as a
   // cascade would. A switch happens where its force is continuous, so that is rare: none
-  // in 9000 switches of the complete scenes, where the search cost a fifth of the run.
+  // in 9470 switches of the complete scenes, where skipping the search saved 4-12 % of the
+  // run (docs/benchmarks.md).
   note_sticks();
   if (!sets_at_lambda_.insert(closed_pairs(equilibrium_.model())).second) {
     switch_at_start_ = false;

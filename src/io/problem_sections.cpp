@@ -341,9 +341,9 @@ void read_loading(const Section& top, Scene& scene) {
       s->fail_missing("increment", "method \"fixed\" needs increment > 0 (strain), e.g. 1e-3");
     }
     scene.stepping.increment = increment.value_or(0);
-    // The same bound as run_scene's (max_fixed_steps), here with the file's line.
+    // The bound run_scene checks too (schedule.h), here with the file's line.
     if (scene.stepping.method == SteppingMethod::fixed &&
-        std::abs(scene.loading.total) / *increment > 1e9) {
+        std::abs(scene.loading.total) / *increment > max_fixed_steps) {
       std::ostringstream steps;
       steps << std::abs(scene.loading.total) / *increment << " fixed steps to loading.total = "
             << scene.loading.total;

@@ -8,6 +8,11 @@ namespace latfrac {
 
 enum class SteppingMethod { event, fixed };
 
+// The most fixed steps a run may take, |total| / increment: 1e9 solves would take days on
+// any lattice, and beyond it the step count does not fit the loop's counter either (an
+// increment of 1e-300 made a run that took no step and wrote a result with no snapshot).
+inline constexpr double max_fixed_steps = 1e9;
+
 struct Stepping {
   SteppingMethod method = SteppingMethod::event;
   double increment = 0;  // strain increment ds for the fixed-step method

@@ -43,13 +43,8 @@ std::vector<std::string> unsupported_effects(const Scene& scene);
 // the run's start. Throws InputError when a checkpoint does not fit the scene's model.
 RunResult run_scene(const Scene& scene, const RunOptions& options);
 
-// The most fixed steps a run may take, |loading.total| / increment: 1e9 solves would take
-// days on any lattice. Beyond it the step count does not fit the loop's counter either (an
-// increment of 1e-300 made a run that took no step and wrote a result with no snapshot).
-inline constexpr double max_fixed_steps = 1e9;
-
 // Throws InputError naming `what` (the key or option that gave the increment) when
-// |total| / increment exceeds max_fixed_steps.
+// |total| / increment exceeds max_fixed_steps (schedule.h).
 void check_step_count(double total, double increment, const std::string& what);
 
 // The current time in ISO 8601 (UTC), as provenance records it.
