@@ -2,8 +2,9 @@
 # The petsc backend against the cholmod backend (docs/parallel.md): a problem run with
 # solver.backend = "cholmod", then under `mpirun -np RANKS` with "petsc", must give the
 # same event list: the same bonds, modes and cascades in the same order, lambda and f to
-# 1e-9 relative. Each run checks its own equilibria to solver.tolerance (a solve that
-# misses it is redone from a fresh factorization, or the run stops with an error).
+# 1e-9 relative (f not where a run held a mechanism: events.sh). Each run checks its own
+# equilibria to solver.tolerance (a solve that misses it is redone from a fresh
+# factorization, or the run stops with an error).
 #
 # Usage: backend_case.sh LATFRAC MPIEXEC WORKDIR RANKS PROBLEM [--set ...]
 # Needs h5dump (hdf5-tools), as scripts/event-lists.sh does.
@@ -27,4 +28,5 @@ source "$(dirname "$0")/events.sh"  # events FILE.h5, same_events A B NAME_A NAM
 a=$(ls "$work"/cholmod/*.h5) b=$(ls "$work"/petsc/*.h5)
 events "$a" > "$work/cholmod.txt"
 events "$b" > "$work/petsc.txt"
-same_events "$work/cholmod.txt" "$work/petsc.txt" cholmod petsc
+{ held_lambdas "$a"; held_lambdas "$b"; } > "$work/held.txt"
+same_events "$work/cholmod.txt" "$work/petsc.txt" cholmod petsc "$work/held.txt"
