@@ -207,7 +207,11 @@ int run_command(const RunRequest& request) {
   writer->finish(result);
   const std::string picture = base + "." + scene.output.picture_format;
   if (scene.output.picture)
-    render_picture(result, result.snapshots.size() - 1, picture, scene.output.picture_options);
+  {
+    const PictureReport report =
+        render_picture(result, result.snapshots.size() - 1, picture, scene.output.picture_options);
+    if (!report.note.empty()) std::cerr << "latfrac: note: " << report.note << "\n";
+  }
 
   // 5. The summary.
   if (!quiet) {
@@ -357,7 +361,8 @@ int render_command(const std::string& path, double lambda, const std::string& pi
   picture_format_of(picture);  // an unsupported extension is refused before reading
   const RunResult result = read_result_file(path);
   const std::size_t index = chosen_snapshot(result, lambda);
-  render_picture(result, index, picture, options);
+  const PictureReport report = render_picture(result, index, picture, options);
+  if (!report.note.empty()) std::cerr << "latfrac: note: " << report.note << "\n";
   std::cout << "wrote " << picture << " (lambda " << result.snapshots[index].lambda << ")\n";
   return 0;
 }

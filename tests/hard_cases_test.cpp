@@ -327,6 +327,22 @@ TEST_CASE("Hard: scales that overflow are refused before any solve, with the key
   CHECK_THROWS_WITH(build_model(scene_with([](Scene& s) { s.material.young = 1e-4; })),
                     Catch::Contains("strain of 2.6"));
   CHECK_NOTHROW(build_model(scene_with([](Scene& s) { s.material.young = 1e-3; })));
+  // A layer's sigma0 of 1e308 Pa scales the derived tau0 (141 MPa here: psi 34, m 3) by
+  // 1e308 / 5e7 = 2e300: 2.8e308 overflows, and the run went on with tau0 = inf. The same
+  // layer at 1e300 Pa (tau0 2.8e300) builds.
+  CHECK_THROWS_WITH(build_model(scene_with([](Scene& s) {
+                      s.strength->friction_angle = 34;
+                      s.strength->tau0_factor = 3;
+                      s.strength->tau0.reset();
+                      s.layers.push_back({0, 5e3, s.material, 1e308, std::nullopt});
+                    })),
+                    Catch::Contains("strength.tau0 of bond") && Catch::Contains("not finite"));
+  CHECK_NOTHROW(build_model(scene_with([](Scene& s) {
+    s.strength->friction_angle = 34;
+    s.strength->tau0_factor = 3;
+    s.strength->tau0.reset();
+    s.layers.push_back({0, 5e3, s.material, 1e300, std::nullopt});
+  })));
   // The unchanged scene builds, its weights finite.
   CHECK(build_model(scene_with([](Scene&) {})).external_force.allFinite());
 }

@@ -201,6 +201,24 @@ TEST_CASE("the exaggeration moves the drawn lattice by u times the factor", "[re
   }
 }
 
+TEST_CASE("an exaggeration that moves the nodes beyond ten sizes of the lattice is noted",
+          "[render]") {
+  // The patch spans 9.5 spacings in x (9500 m); every node moves 2000 m. The note starts
+  // where the motion passes 10 x 9500 m, at a factor of 47.5, and names the factor that
+  // makes the motion a fifth of the size: 0.2 x 9500 / 2000 = 0.95.
+  ScratchDir dir;
+  RunResult result = triangular_patch();
+  for (std::size_t node = 0; node < result.node_count(); ++node)
+    result.snapshots[0].displacement[3 * node] = 2 * render_spacing;
+  PictureOptions options;
+  options.width = 400;
+  options.exaggeration = 47;
+  CHECK(render_picture(result, 0, dir.file("n.png"), options).note.empty());
+  options.exaggeration = 48;
+  const std::string note = render_picture(result, 0, dir.file("n.png"), options).note;
+  CHECK_THAT(note, Catch::Contains("9.6e+04 m") && Catch::Contains("about 0.95 fits"));
+}
+
 TEST_CASE("an SVG parses as XML and holds one stroked path per broken bond", "[render]") {
   ScratchDir dir;
   std::size_t bonds[3];

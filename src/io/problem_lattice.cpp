@@ -31,8 +31,8 @@ LatticeSpec read_lattice(const Section& top) {
   for (const double extent : size) {
     if (extent < 2 * lattice.spacing) {
       s.fail("size",
-             "extent " + format_number(extent) + " m is less than 2 spacings (" +
-                 format_number(2 * lattice.spacing) + " m)",
+             "extent " + format_number(extent) + " m is less than 2 spacings of " +
+                 format_number(lattice.spacing) + " m",
              "allowed: each extent >= 2 * lattice.spacing");
     }
   }

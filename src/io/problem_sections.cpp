@@ -128,6 +128,17 @@ std::optional<Strength> read_strength(const Section& top) {
                                 " needs a shear strength: tau0 > 0 (Pa), "
                                 "or friction_angle (degrees) to derive it");
   }
+  // A derived tau0 beyond the doubles' range (tau0_factor or sigma0 near 1e308) would run
+  // with an infinite shear strength and print "tau0 inf Pa": refused.
+  if (!strength.tau0 && strength.friction_angle &&
+      !std::isfinite(derived_tau0(strength.sigma0, *strength.friction_angle, strength.tau0_factor))) {
+    const bool sigma0_alone = !std::isfinite(derived_tau0(strength.sigma0, *strength.friction_angle, 1.0));
+    s->fail(sigma0_alone || !s->has("tau0_factor") ? "sigma0" : "tau0_factor",
+            "gives a derived tau0 = tau0_factor sigma0 (1 + sin psi) / (2 cos psi) that is not "
+            "finite (tau0_factor " + format_number(strength.tau0_factor) + ", sigma0 " +
+                format_number(strength.sigma0) + " Pa)",
+            "allowed: tau0_factor and sigma0 whose derived tau0 is finite");
+  }
   if (needs_friction_angle(strength.criterion) && !strength.friction_angle) {
     s->fail_missing("friction_angle",
                     "criterion " + criterion + " needs " +

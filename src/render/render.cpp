@@ -137,6 +137,33 @@ std::size_t snapshot_nearest(const RunResult& result, double lambda) {
   return nearest;
 }
 
+// The window holds the reference and the deformed positions (fit_window), so an
+// exaggeration that moves the nodes far beyond the lattice's size shrinks the lattice to
+// a speck. Not an error (the user asked for it), but worth saying, with a value that fits:
+// the largest motion a fifth of the lattice's size.
+std::string exaggeration_note(const RunResult& result, const Snapshot& snapshot,
+                              double exaggeration) {
+  double size = 0, largest = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (std::size_t node = 0; node < result.node_count(); ++node) {
+      low = std::min(low, result.positions[3 * node + axis]);
+      high = std::max(high, result.positions[3 * node + axis]);
+    }
+    if (high > low) size = std::max(size, high - low);
+  }
+  for (const double u : snapshot.displacement) largest = std::max(largest, std::abs(u));
+  if (!(size > 0) || !(largest > 0) || !(exaggeration * largest > 10 * size)) return "";
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "the exaggeration %g moves nodes by up to %.3g m, %.3g times the lattice's "
+                "size (%.3g m): the lattice is drawn small; an exaggeration of about %.2g "
+                "fits (the largest motion a fifth of the size)",
+                exaggeration, exaggeration * largest, exaggeration * largest / size, size,
+                0.2 * size / largest);
+  return text;
+}
+
 PictureReport render_picture(const RunResult& result, std::size_t index, const std::string& path,
                              const PictureOptions& options) {
   // 1. Everything that can be wrong with the input, before any file is made.
@@ -161,6 +188,7 @@ PictureReport render_picture(const RunResult& result, std::size_t index, const s
   report.right = view.right, report.up = view.up;
   report.field_min = field.low, report.field_max = field.high;
   report.nodes_drawn = view.nodes.size();
+  report.note = exaggeration_note(result, snapshot, exaggeration);
   const bool cracks = options.style == CrackStyle::cracks || oblique;
   report.broken_bonds_drawn = cracks ? view.broken.size() : 0;
 

@@ -75,6 +75,13 @@ void check_failure_strains(const Model& model) {
   for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
     for (const auto& [name, strength] :
          {std::pair{"sigma0", model.bond_sigma0[b]}, std::pair{"tau0", model.bond_tau0[b]}}) {
+      if (!std::isfinite(strength)) {
+        // A layer's sigma0 near 1e308 scales a derived tau0 past the doubles' range.
+        message << "strength." << name << " of bond " << b
+                << " is not finite (a layer's sigma0 scales the derived tau0 by its ratio to "
+                   "strength.sigma0); allowed: strengths whose values stay finite";
+        throw InputError(message.str());
+      }
       if (!(strength > 0) || strength >= smallest_failure_strain * model.bond_young[b]) continue;
       message << "strength." << name << " = " << strength
               << " Pa against young = " << model.bond_young[b] << " Pa (bond " << b

@@ -92,9 +92,14 @@ std::string memory_refusal(const Scene& scene, const SizeEstimate& estimate,
                            double available_bytes) {
   if (available_bytes <= 0 || estimate.memory_bytes <= available_bytes) return "";
   std::ostringstream text;
-  text << scene.source_path << ": lattice.spacing: " << scene.lattice.spacing << " m makes about "
-       << std::setprecision(3) << estimate.nodes << " nodes needing about "
-       << readable_bytes(estimate.memory_bytes) << ", but only " << readable_bytes(available_bytes)
+  text << scene.source_path << ": lattice.spacing: " << scene.lattice.spacing << " m makes ";
+  // A lattice.size near 1e308 makes the estimate overflow: no count to print.
+  if (std::isfinite(estimate.nodes) && std::isfinite(estimate.memory_bytes))
+    text << "about " << std::setprecision(3) << estimate.nodes << " nodes needing about "
+         << readable_bytes(estimate.memory_bytes);
+  else
+    text << "more nodes than a double counts (lattice.size over lattice.spacing overflows)";
+  text << ", but only " << readable_bytes(available_bytes)
        << " are available; use a larger spacing or a smaller lattice.size (or --force to try "
           "anyway)";
   return text.str();

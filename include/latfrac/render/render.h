@@ -34,6 +34,10 @@ struct PictureReport {
   double field_min = 0, field_max = 0;      // SI units, over the nodes drawn
   std::string colour_bar_low, colour_bar_high;  // the colour bar's end labels ("" without)
   std::size_t nodes_drawn = 0, broken_bonds_drawn = 0;
+  // Empty, or a sentence for the user: the exaggeration moves the nodes by more than ten
+  // times the lattice's size, so the lattice is drawn as a speck in the window that holds
+  // the deformed positions; it names an exaggeration that fits.
+  std::string note;
 
   // Where a deformed position (m) lands in the picture, pixels from the top-left corner.
   std::array<double, 2> pixel_of(const std::array<double, 3>& position) const;
