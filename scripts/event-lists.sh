@@ -23,9 +23,9 @@ for problem in "$here"/problems/*.toml; do
       [[ $method == fixed ]] && ! grep -q '^increment' "$problem" && extra+=(--set stepping.increment=1e-3)
       if [[ -n $contact ]]; then extra+=(--set contact.enabled=true)
       elif grep -q "^\[contact\]" "$problem"; then
-        extra+=(--set contact.enabled=false)
-        # A friction on a disabled contact is an error: take it away with the contact.
-        grep -q '^friction' "$problem" && extra+=(--set contact.friction=0)
+        # A friction (or its facets) on a disabled contact is an error: the whole table
+        # is replaced.
+        extra+=(--set 'contact={enabled=false}')
       fi
       # An elastic scene (no [strength]) has no events; contact needs a [strength].
       grep -q '^\[strength\]' "$problem" || { [[ -z $contact && $method == event ]] || continue; }

@@ -6,9 +6,11 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "hard_case_checks.h"
+#include "latfrac/io/problem_file.h"
 #include "latfrac/scene/run.h"
 #include "scenes.h"
 
@@ -60,23 +62,25 @@ Scene pressed_triangles(std::mt19937& random) {
 }  // namespace
 
 TEST_CASE("Hard: contact chattering is detected and resolved by the cycle rule", "[hard]") {
-  // Whether a scene makes the active-set iteration revisit a set depends on rounding: a
-  // single scene found by a search cycled with some BLAS kernels and not with others. So
-  // the test takes the first scene of a fixed family that cycles. The family cycles
-  // because of the breaks (kept intact, 1 of its first 300 scenes cycles). Measured with
-  // seven BLAS kernels (OpenBLAS SkylakeX, Haswell, Zen, SandyBridge, Nehalem, Prescott;
-  // reference BLAS), built with and without -march=native: 39 to 50 % of its scenes cycle,
-  // the first within the first 9, and never more than 11 in a row do not; 40 scenes leave
-  // practically no chance of finding none.
-  std::mt19937 random(1105);
+  // Whether a scene makes the active-set iteration revisit a set depends on rounding, so
+  // the test takes the first of three lattices that cycles. The paper's Fig. 6 on a random
+  // lattice with contact, at 2000 m (0.3 s a run), cycles on each of seeds 1, 2 and 3 (6,
+  // 5 and 56 cycles resolved) with each of five OpenBLAS kernels (Haswell, SkylakeX, Zen,
+  // Prescott, Nehalem; seed 2 with Nehalem 24), measured 2026-12-06. (The family of
+  // pressed triangles this test used before cycled only through mechanisms that factor
+  // updates left in the factor; checked after each update, none of its first 100 scenes
+  // cycles: docs/robustness.md, "Mechanisms".)
   Scene scene;
   RunResult result;
-  int trial = 0;
-  do {
-    scene = pressed_triangles(random);
+  int seed = 1;
+  for (; seed <= 3; ++seed) {
+    scene = read_problem_file(std::string(LATFRAC_PROBLEMS_DIR) + "/fig6-elliptic-graben-random-2d.toml",
+                              {"lattice.spacing=2000", "lattice.seed=" + std::to_string(seed),
+                               "output.snapshots=[0.02, 0.04]"});
     result = run_scene(scene, quiet());
-  } while (result.summary.contact_cycles == 0 && ++trial < 40);
-  INFO("scene " << trial);
+    if (result.summary.contact_cycles > 0) break;
+  }
+  INFO("seed " << seed);
   REQUIRE(result.summary.contact_cycles >= 1);
   CHECK(snapshots_finite(result));
   const RunResult again = run_scene(scene, quiet());

@@ -28,6 +28,11 @@ struct CholeskyFactor::State {
   // when first needed after the pattern changed: a factorization, an update that grew it).
   BackwardSolve backward;
   bool backward_stale = true;
+  // K's diagonal in the factor's order, from the last fresh factorization and kept up to
+  // date by the updates' columns; and the largest value each has had since: the scale
+  // against which an updated pivot is judged.
+  std::vector<double> diagonal, scale;
+  std::vector<char> seen;  // update()'s marks on the tree's paths, all 0 between calls
 };
 
 namespace {
@@ -233,6 +238,7 @@ void CholeskyFactor::factorize(StiffnessMatrix& matrix) {
     const NullMode mode = null_mode(matrix);
     if (weakest_.ratio > mechanism_pivot && !mode.rounding()) {
       factorized_ = true;  // a genuine soft motion
+      record_diagonal(matrix);
       return;
     }
     std::ostringstream message;
@@ -243,6 +249,22 @@ void CholeskyFactor::factorize(StiffnessMatrix& matrix) {
     throw SingularStiffness(message.str(), mode.largest);
   }
   factorized_ = true;
+  record_diagonal(matrix);
+}
+
+void CholeskyFactor::record_diagonal(StiffnessMatrix& matrix) {
+  const auto* perm = static_cast<const std::int64_t*>(state_->factor->Perm);
+  const std::int64_t n = static_cast<std::int64_t>(state_->factor->n);
+  const std::vector<std::int64_t>& start = matrix.column_start();
+  const std::vector<std::int64_t>& row = matrix.row_index();
+  const std::vector<double>& value = matrix.values();
+  state_->diagonal.assign(n, 0.0);
+  for (std::int64_t k = 0; k < n; ++k) {
+    const std::int64_t column = perm[k];
+    const std::int64_t last = start[column + 1] - 1;
+    if (last >= start[column] && row[last] == column) state_->diagonal[k] = value[last];
+  }
+  state_->scale = state_->diagonal;
 }
 
 // One pass over the supernodal factor's diagonal: L(k,k)^2 / K(p,p) with p = Perm[k]. The
@@ -368,14 +390,65 @@ void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
   p[columns.size()] = k;
   const int ok = cholmod_l_updown(downdate ? 0 : 1, update_matrix, factor, &c);
   const int status = c.status;
-  cholmod_l_free_sparse(&update_matrix, &c);
   if (status == CHOLMOD_NOT_POSDEF) {
+    cholmod_l_free_sparse(&update_matrix, &c);
     factorized_ = false;
     throw Error(
         "cholmod_l_updown: the updated stiffness matrix is not positive definite: part of "
         "the body can move without resistance");
   }
+  if (!ok) cholmod_l_free_sparse(&update_matrix, &c);
   check(c, ok, "cholmod_l_updown");
+  // A downdate can leave a mechanism that cholmod_l_updown passes: an unknown whose
+  // springs are all gone but for a contact's, stiff along another axis, keeps a pivot of
+  // rounding size, of either sign (docs/robustness.md, "Mechanisms"). Such a factor
+  // solves with a motion of any size that the residual check cannot see (K v ~ 0), and
+  // whether the pivot comes out negative (refused by updown) or positive (passed) depends
+  // on the rounding: the ordering, the BLAS. So each update compares the factor's pivots
+  // D(k), and K's diagonal kept up to date from the columns, with the largest value that
+  // diagonal has had since the last fresh factorization. At or below
+  // mechanism_pivot of it the factor is dropped; the fresh factorization that follows
+  // judges the stiffness by its own rules and holds a mechanism where it finds one.
+  std::vector<double>& diagonal = state_->diagonal;
+  std::vector<double>& scale = state_->scale;
+  if (static_cast<std::int64_t>(diagonal.size()) == n) {
+    const double sign = downdate ? -1.0 : 1.0;
+    for (std::int64_t e = 0; e < k; ++e) {
+      diagonal[i[e]] += sign * x[e] * x[e];
+      scale[i[e]] = std::max(scale[i[e]], diagonal[i[e]]);
+    }
+    // The update changes the pivots on the elimination tree's paths from C's rows to the
+    // root, and nothing else: those are checked (a column's parent is its smallest row
+    // below the diagonal).
+    const auto* lp = static_cast<const std::int64_t*>(factor->p);
+    const auto* lnz = static_cast<const std::int64_t*>(factor->nz);
+    const auto* li = static_cast<const std::int64_t*>(factor->i);
+    const auto* lx = static_cast<const double*>(factor->x);
+    std::vector<char>& seen = state_->seen;
+    seen.resize(n, 0);
+    std::vector<std::int64_t> path;
+    for (const std::int64_t start : rows) {
+      for (std::int64_t j = start; j >= 0 && !seen[j];) {
+        seen[j] = 1;
+        path.push_back(j);
+        std::int64_t parent = -1;
+        for (std::int64_t e = lp[j] + 1; e < lp[j] + lnz[j]; ++e)
+          if (parent < 0 || li[e] < parent) parent = li[e];
+        j = parent;
+      }
+    }
+    for (const std::int64_t j : path) seen[j] = 0;
+    for (const std::int64_t j : path) {
+      const double floor = mechanism_pivot * scale[j];
+      if (lx[lp[j]] > floor && diagonal[j] > floor) continue;
+      factorized_ = false;
+      const std::string ratio = std::to_string(lx[lp[j]] / scale[j]);
+      cholmod_l_free_sparse(&update_matrix, &c);
+      throw Error("cholmod_l_updown: a pivot of the updated factor is " + ratio +
+                  " of its unknown's stiffness: part of the body may move without resistance");
+    }
+  }
+  cholmod_l_free_sparse(&update_matrix, &c);
   BackwardSolve& backward = state_->backward;
   if (backward.ready() || backward.tree_ready()) {
     backward.check_paths(simplicial(*factor), rows);

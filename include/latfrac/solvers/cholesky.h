@@ -72,6 +72,8 @@ class CholeskyFactor final : public LinearBackend {
   // The scan that factorize() makes (O(n)), for benchmarks; needs the fresh supernodal
   // factor of `matrix`.
   WeakestPivot find_weakest_pivot(StiffnessMatrix& matrix) const;
+  // Keeps K's diagonal (in the factor's order) for update()'s check of its pivots.
+  void record_diagonal(StiffnessMatrix& matrix);
   // At or below mechanism_pivot, factorize() reports a mechanism (SingularStiffness).
   // Below near_mechanism_pivot it reports one when the pivot is rounding: the energy of its
   // motion measured on K disagrees with the factor's. EquilibriumSolver also blames a solve
