@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <limits>
 #include <new>
@@ -38,6 +39,8 @@ namespace fs = std::filesystem;
 using namespace latfrac;
 
 namespace {
+
+std::string flown_warning(const RunResult& result);
 
 std::string joined(int argc, char** argv) {
   std::string line;
@@ -206,11 +209,12 @@ int run_command(const RunRequest& request) {
   // 4. The complete result, its ParaView description and the picture.
   writer->finish(result);
   const std::string picture = base + "." + scene.output.picture_format;
-  if (scene.output.picture)
-  {
+  const std::string flown = flown_warning(result);
+  if (!flown.empty()) std::cerr << "latfrac: warning: " << flown << "\n";
+  if (scene.output.picture) {
     const PictureReport report =
         render_picture(result, result.snapshots.size() - 1, picture, scene.output.picture_options);
-    if (!report.note.empty()) std::cerr << "latfrac: note: " << report.note << "\n";
+    if (!report.note.empty() && flown.empty()) std::cerr << "latfrac: note: " << report.note << "\n";
   }
 
   // 5. The summary.
@@ -354,6 +358,36 @@ PictureOptions picture_options(const RenderNames& names, int width, double exagg
   if (names.section_x) options.section_axis = SectionAxis::x;
   options.section_at = names.section_x ? names.section_x : names.section_y;
   return options;
+}
+
+// A node that moved farther than the lattice's size has left small-strain mechanics: a
+// piece that found no equilibrium (docs/robustness.md, "Mechanisms": pieces on
+// frictionless contacts under gravity), or a material too soft for its load. The first
+// snapshot where that happens, or "".
+std::string flown_warning(const RunResult& result) {
+  double size = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (std::size_t node = 0; node < result.node_count(); ++node) {
+      low = std::min(low, result.positions[3 * node + axis]);
+      high = std::max(high, result.positions[3 * node + axis]);
+    }
+    if (high > low) size = std::max(size, high - low);
+  }
+  for (const Snapshot& snapshot : result.snapshots) {
+    double largest = 0;
+    for (const double u : snapshot.displacement) largest = std::max(largest, std::abs(u));
+    if (!(largest > size)) continue;
+    std::ostringstream text;
+    text << std::setprecision(3) << "by lambda " << snapshot.lambda << " nodes moved by up to "
+         << largest << " m, more than the lattice's size (" << size
+         << " m): small-strain mechanics does not hold there, and the results from there on "
+            "are not physical (a piece that found no equilibrium, as pieces on frictionless "
+            "contacts under gravity can, or a material too soft for its load; "
+            "docs/robustness.md, \"Mechanisms\")";
+    return text.str();
+  }
+  return "";
 }
 
 int render_command(const std::string& path, double lambda, const std::string& picture,
