@@ -365,15 +365,7 @@ PictureOptions picture_options(const RenderNames& names, int width, double exagg
 // frictionless contacts under gravity), or a material too soft for its load. The first
 // snapshot where that happens, or "".
 std::string flown_warning(const RunResult& result) {
-  double size = 0;
-  for (int axis = 0; axis < 3; ++axis) {
-    double low = std::numeric_limits<double>::infinity(), high = -low;
-    for (std::size_t node = 0; node < result.node_count(); ++node) {
-      low = std::min(low, result.positions[3 * node + axis]);
-      high = std::max(high, result.positions[3 * node + axis]);
-    }
-    if (high > low) size = std::max(size, high - low);
-  }
+  const double size = result.largest_extent();
   for (const Snapshot& snapshot : result.snapshots) {
     double largest = 0;
     for (const double u : snapshot.displacement) largest = std::max(largest, std::abs(u));

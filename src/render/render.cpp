@@ -143,15 +143,8 @@ std::size_t snapshot_nearest(const RunResult& result, double lambda) {
 // the largest motion a fifth of the lattice's size.
 std::string exaggeration_note(const RunResult& result, const Snapshot& snapshot,
                               double exaggeration) {
-  double size = 0, largest = 0;
-  for (int axis = 0; axis < 3; ++axis) {
-    double low = std::numeric_limits<double>::infinity(), high = -low;
-    for (std::size_t node = 0; node < result.node_count(); ++node) {
-      low = std::min(low, result.positions[3 * node + axis]);
-      high = std::max(high, result.positions[3 * node + axis]);
-    }
-    if (high > low) size = std::max(size, high - low);
-  }
+  const double size = result.largest_extent();
+  double largest = 0;
   for (const double u : snapshot.displacement) largest = std::max(largest, std::abs(u));
   if (!(size > 0) || !(largest > 0) || !(exaggeration * largest > 10 * size)) return "";
   char text[400];

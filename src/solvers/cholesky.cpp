@@ -32,7 +32,6 @@ struct CholeskyFactor::State {
   // date by the updates' columns; and the largest value each has had since: the scale
   // against which an updated pivot is judged.
   std::vector<double> diagonal, scale;
-  std::vector<char> seen;  // update()'s marks on the tree's paths, all 0 between calls
 };
 
 namespace {
@@ -373,7 +372,7 @@ void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
   auto* i = static_cast<std::int64_t*>(update_matrix->i);
   auto* x = static_cast<double*>(update_matrix->x);
   std::int64_t k = 0;
-  std::vector<std::int64_t> rows;  // in the factor's order, for the tree's check (check_paths)
+  std::vector<std::int64_t> rows;  // in the factor's order: check_paths, check_updated_pivots
   for (std::size_t j = 0; j < columns.size(); ++j) {
     p[j] = k;
     Column sorted;
@@ -381,6 +380,13 @@ void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
       sorted.push_back({inverse_permutation_[row], value});
       rows.push_back(inverse_permutation_[row]);
     }
+    // K's diagonal changes by +-C(r, j)^2 (for check_updated_pivots).
+    if (static_cast<std::int64_t>(state_->diagonal.size()) == n)
+      for (const auto& [row, value] : sorted) {
+        double& d = state_->diagonal[row];
+        d += downdate ? -value * value : value * value;
+        state_->scale[row] = std::max(state_->scale[row], d);
+      }
     std::sort(sorted.begin(), sorted.end());
     for (const auto& [row, value] : sorted) {
       i[k] = row;
@@ -390,69 +396,45 @@ void CholeskyFactor::update(const std::vector<Column>& columns, bool downdate) {
   p[columns.size()] = k;
   const int ok = cholmod_l_updown(downdate ? 0 : 1, update_matrix, factor, &c);
   const int status = c.status;
+  cholmod_l_free_sparse(&update_matrix, &c);
   if (status == CHOLMOD_NOT_POSDEF) {
-    cholmod_l_free_sparse(&update_matrix, &c);
     factorized_ = false;
     throw Error(
         "cholmod_l_updown: the updated stiffness matrix is not positive definite: part of "
         "the body can move without resistance");
   }
-  if (!ok) cholmod_l_free_sparse(&update_matrix, &c);
   check(c, ok, "cholmod_l_updown");
-  // A downdate can leave a mechanism that cholmod_l_updown passes: an unknown whose
-  // springs are all gone but for a contact's, stiff along another axis, keeps a pivot of
-  // rounding size, of either sign (docs/robustness.md, "Mechanisms"). Such a factor
-  // solves with a motion of any size that the residual check cannot see (K v ~ 0), and
-  // whether the pivot comes out negative (refused by updown) or positive (passed) depends
-  // on the rounding: the ordering, the BLAS. So each update compares the factor's pivots
-  // D(k), and K's diagonal kept up to date from the columns, with the largest value that
-  // diagonal has had since the last fresh factorization. At or below
-  // mechanism_pivot of it the factor is dropped; the fresh factorization that follows
-  // judges the stiffness by its own rules and holds a mechanism where it finds one.
-  std::vector<double>& diagonal = state_->diagonal;
-  std::vector<double>& scale = state_->scale;
-  if (static_cast<std::int64_t>(diagonal.size()) == n) {
-    const double sign = downdate ? -1.0 : 1.0;
-    for (std::int64_t e = 0; e < k; ++e) {
-      diagonal[i[e]] += sign * x[e] * x[e];
-      scale[i[e]] = std::max(scale[i[e]], diagonal[i[e]]);
-    }
-    // The update changes the pivots on the elimination tree's paths from C's rows to the
-    // root, and nothing else: those are checked (a column's parent is its smallest row
-    // below the diagonal).
-    const auto* lp = static_cast<const std::int64_t*>(factor->p);
-    const auto* lnz = static_cast<const std::int64_t*>(factor->nz);
-    const auto* li = static_cast<const std::int64_t*>(factor->i);
-    const auto* lx = static_cast<const double*>(factor->x);
-    std::vector<char>& seen = state_->seen;
-    seen.resize(n, 0);
-    std::vector<std::int64_t> path;
-    for (const std::int64_t start : rows) {
-      for (std::int64_t j = start; j >= 0 && !seen[j];) {
-        seen[j] = 1;
-        path.push_back(j);
-        std::int64_t parent = -1;
-        for (std::int64_t e = lp[j] + 1; e < lp[j] + lnz[j]; ++e)
-          if (parent < 0 || li[e] < parent) parent = li[e];
-        j = parent;
-      }
-    }
-    for (const std::int64_t j : path) seen[j] = 0;
-    for (const std::int64_t j : path) {
-      const double floor = mechanism_pivot * scale[j];
-      if (lx[lp[j]] > floor && diagonal[j] > floor) continue;
-      factorized_ = false;
-      const std::string ratio = std::to_string(lx[lp[j]] / scale[j]);
-      cholmod_l_free_sparse(&update_matrix, &c);
-      throw Error("cholmod_l_updown: a pivot of the updated factor is " + ratio +
-                  " of its unknown's stiffness: part of the body may move without resistance");
-    }
-  }
-  cholmod_l_free_sparse(&update_matrix, &c);
   BackwardSolve& backward = state_->backward;
   if (backward.ready() || backward.tree_ready()) {
     backward.check_paths(simplicial(*factor), rows);
     if (!backward.ready() && !backward.tree_ready()) state_->backward_stale = true;
+  }
+  check_updated_pivots(rows);
+}
+
+// A downdate can leave a mechanism that cholmod_l_updown passes: an unknown whose springs
+// are all gone but for a contact's, stiff along another axis, keeps a pivot of rounding
+// size, of either sign (docs/robustness.md, "Mechanisms"). Such a factor solves with a
+// motion of any size that the residual check cannot see (K v ~ 0), and whether the pivot
+// comes out negative (refused by updown) or positive (passed) depends on the rounding: the
+// ordering, the BLAS. So the pivots D(k) that the update changed (those on the tree's
+// paths from its rows, the reach of a forward solve from them), and K's diagonal there,
+// are compared with the largest value that diagonal has had since the last fresh
+// factorization. At or below mechanism_pivot of it the factor is dropped; the fresh
+// factorization that follows judges the stiffness by its own rules and holds a mechanism
+// where it finds one.
+void CholeskyFactor::check_updated_pivots(const std::vector<std::int64_t>& rows) {
+  const cholmod_factor& f = *state_->factor;
+  if (state_->diagonal.size() != f.n) return;
+  const SimplicialFactor simple = simplicial(f);
+  for (const std::int64_t j : reach(rows)) {
+    const double floor = mechanism_pivot * state_->scale[j];
+    const double pivot = simple.value[simple.start[j]];
+    if (pivot > floor && state_->diagonal[j] > floor) continue;
+    factorized_ = false;
+    throw Error("cholmod_l_updown: a pivot of the updated factor is " +
+                std::to_string(pivot / state_->scale[j]) +
+                " of its unknown's stiffness: part of the body may move without resistance");
   }
 }
 
@@ -494,6 +476,18 @@ std::vector<std::int64_t> reached_columns(const std::vector<std::int64_t>& rows,
 
 }  // namespace
 
+// The columns of the simplicial factor that a forward solve from `rows` changes (and an
+// update touching them): the union of their tree paths, ascending; from the tree when it
+// is current, else along the graph of L.
+std::vector<std::int64_t> CholeskyFactor::reach(const std::vector<std::int64_t>& rows) const {
+  if (!state_->backward_stale && state_->backward.tree_ready()) return state_->backward.reach(rows);
+  const SimplicialFactor simple = simplicial(*state_->factor);
+  std::vector<std::int64_t> order =
+      reached_columns(rows, simple.start, simple.count, simple.row, simple.n);
+  std::sort(order.begin(), order.end());
+  return order;
+}
+
 bool CholeskyFactor::solve_sparse(const std::vector<Column>& b, double* x) {
   if (!factorized_) throw Error("CholeskyFactor::solve_sparse called before a successful factorization");
   const cholmod_factor& f = *state_->factor;
@@ -523,13 +517,7 @@ bool CholeskyFactor::solve_sparse(const std::vector<Column>& b, double* x) {
     state_->backward.build(simple, threads::count());
     state_->backward_stale = false;
   }
-  std::vector<std::int64_t> order;
-  if (state_->backward.tree_ready()) {
-    order = state_->backward.reach(rows);
-  } else {
-    order = reached_columns(rows, start, count, row, n);
-    std::sort(order.begin(), order.end());
-  }
+  const std::vector<std::int64_t> order = reach(rows);
   for (const std::int64_t j : order)
     if (row[start[j]] != j) return false;
   // Each right-hand side on its own (on the threads, for a factor big enough that the

@@ -5,7 +5,9 @@
 // xy, Pa, tension positive), displacement N x 3 (m).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -93,6 +95,20 @@ struct RunResult {
 
   std::size_t node_count() const { return positions.size() / 3; }
   std::size_t bond_count() const { return bond_kind.size(); }
+  // The lattice's size: its largest extent along x, y or z over the reference positions,
+  // m (0 without nodes).
+  double largest_extent() const {
+    double size = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      double low = std::numeric_limits<double>::infinity(), high = -low;
+      for (std::size_t node = 0; node < node_count(); ++node) {
+        low = std::min(low, positions[3 * node + axis]);
+        high = std::max(high, positions[3 * node + axis]);
+      }
+      if (high > low) size = std::max(size, high - low);
+    }
+    return size;
+  }
 };
 
 }  // namespace latfrac

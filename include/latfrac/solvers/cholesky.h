@@ -100,6 +100,11 @@ class CholeskyFactor final : public LinearBackend {
   std::uint64_t version() const override { return version_; }
 
  private:
+  // The simplicial factor's columns that a forward solve from `rows` reaches, ascending.
+  std::vector<std::int64_t> reach(const std::vector<std::int64_t>& rows) const;
+  // After an update: drops the factor (throws Error) where a pivot it changed fell to a
+  // mechanism's (update()'s comment in cholesky.cpp).
+  void check_updated_pivots(const std::vector<std::int64_t>& rows);
   std::uint64_t version_ = 0;
   struct State;
   std::int64_t smallest_pivot_column() const;
