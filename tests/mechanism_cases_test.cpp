@@ -232,10 +232,10 @@ TEST_CASE("Hard: a mechanism that a downdate leaves is held at once, whatever th
     scene.solver.refactor_every = refactor_every;
     return run_scene(scene, quiet());
   };
+  // The reference: a fresh factorization at every solve, which holds the mechanism.
   const RunResult fresh = run_with(Ordering::metis, 1);
   REQUIRE(fresh.fragments.size() >= 2);
   const double mechanism_lambda = fresh.fragments[1].lambda;
-  CHECK(mechanism_lambda == Approx(0.0308393).epsilon(1e-5));
   for (const Ordering ordering : {Ordering::metis, Ordering::amd, Ordering::nesdis}) {
     const RunResult updated = run_with(ordering, 200);
     INFO("ordering " << static_cast<int>(ordering));

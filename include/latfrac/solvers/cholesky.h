@@ -72,8 +72,6 @@ class CholeskyFactor final : public LinearBackend {
   // The scan that factorize() makes (O(n)), for benchmarks; needs the fresh supernodal
   // factor of `matrix`.
   WeakestPivot find_weakest_pivot(StiffnessMatrix& matrix) const;
-  // Keeps K's diagonal (in the factor's order) for update()'s check of its pivots.
-  void record_diagonal(StiffnessMatrix& matrix);
   // At or below mechanism_pivot, factorize() reports a mechanism (SingularStiffness).
   // Below near_mechanism_pivot it reports one when the pivot is rounding: the energy of its
   // motion measured on K disagrees with the factor's. EquilibriumSolver also blames a solve
@@ -100,6 +98,8 @@ class CholeskyFactor final : public LinearBackend {
   std::uint64_t version() const override { return version_; }
 
  private:
+  // Keeps K's diagonal (in the factor's order) for update()'s check of its pivots.
+  void record_diagonal(StiffnessMatrix& matrix);
   // The simplicial factor's columns that a forward solve from `rows` reaches, ascending.
   std::vector<std::int64_t> reach(const std::vector<std::int64_t>& rows) const;
   // After an update: drops the factor (throws Error) where a pivot it changed fell to a
