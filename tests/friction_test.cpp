@@ -9,9 +9,11 @@
 #include <memory>
 #include <numbers>
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "latfrac/base/error.h"
 #include "latfrac/base/progress.h"
 #include "latfrac/criteria/criterion.h"
 #include "latfrac/criteria/failure_evaluator.h"
@@ -21,6 +23,8 @@
 #include "latfrac/fracture/pair_settling.h"
 #include "latfrac/fracture/pair_switch_source.h"
 #include "latfrac/io/problem_file.h"
+#include "latfrac/mechanics/random_calibration.h"
+#include "latfrac/scene/model_builder.h"
 #include "latfrac/scene/run.h"
 #include "hard_case_checks.h"
 #include "scenes.h"
@@ -703,4 +707,34 @@ TEST_CASE("Hard: a part that slides nearly freely on its slipping contacts is he
   double largest = 0;
   for (double u : last.displacement) largest = std::max(largest, std::abs(u));
   CHECK(largest < 0.04 * scene.lattice.size[0]);
+}
+
+TEST_CASE("Friction needs the broken bonds' shear springs: a lattice at its largest nu "
+          "(ks = 0) is refused with friction and accepted without",
+          "[friction][input]") {
+  // The stick spring is the bond's own ks (docs/model.md, "Friction on closed contacts").
+  // ks = (2/sqrt3)(mu - lambda) vanishes at nu = 1/4 on the triangular lattice, and a random
+  // lattice's alpha = ks / kn vanishes at random_lattice_max_poisson: there a contact's
+  // tangential force stays 0, and friction would silently do nothing.
+  const bool random = GENERATE(false, true);
+  const int dim = GENERATE(2, 3);
+  Scene scene = dim == 2 ? fault_scene(0.3) : fault_scene_3d(0.3);
+  if (random) scene.lattice.kind = LatticeKind::random;
+  const double largest = random ? random_lattice_max_poisson(dim) : 0.25;
+  scene.material.poisson = largest;
+  INFO((random ? "random " : "regular ") << dim << "-D, nu " << largest);
+  try {
+    build_model(scene);
+    FAIL("friction on a lattice without shear springs was accepted");
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    CHECK(message.starts_with("contact.friction: 0.3"));
+    CHECK(message.find("poisson") != std::string::npos);
+  }
+  scene.contact->friction = 0;  // frictionless contacts need no shear spring
+  CHECK(build_model(scene).shear_stiffness[0] == 0);
+  scene.contact->friction = 0.3;  // just below the largest nu, the shear springs are back
+  scene.material.poisson = largest - 0.01;
+  const Model model = build_model(scene);
+  CHECK(model.shear_stiffness[0] > 0);
 }

@@ -34,6 +34,37 @@ const Material& material_at(const Scene& scene, double z) {
   return layer ? layer->material : scene.material;
 }
 
+// A frictional contact sticks on the broken bond's own shear spring (docs/model.md,
+// "Friction on closed contacts"); where ks = 0 its tangential force stays 0, so friction
+// would silently do nothing. That is the largest Poisson's ratio a lattice has: 1/4 on the
+// regular ones, random_lattice_max_poisson on random ones.
+void check_stick_springs(const Scene& scene, const Model& model) {
+  const Lattice& lattice = model.lattice;
+  for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
+    if (lattice.bonds[b].kind == BondKind::next_nearest || model.shear_stiffness[b] > 0 ||
+        !(model.normal_stiffness[b] > 0))
+      continue;
+    const double mid_z = 0.5 * (lattice.positions[lattice.bonds[b].i].z() +
+                                lattice.positions[lattice.bonds[b].j].z());
+    const Layer* layer = layer_at(scene, mid_z);
+    const Material& material = layer ? layer->material : scene.material;
+    std::ostringstream message;
+    message << "contact.friction: " << scene.contact->friction
+            << " acts through the broken bonds' shear springs, and ";
+    if (layer)
+      message << "the [[layer]] from z = " << layer->z_min << " to " << layer->z_max
+              << " m with poisson = " << material.poisson;
+    else
+      message << "material.poisson = " << material.poisson;
+    message << " leaves none (ks = 0 at the largest nu of a "
+            << (lattice.is_random() ? "random" : "regular") << " " << lattice.dim << "-D lattice, "
+            << (lattice.is_random() ? random_lattice_max_poisson(lattice.dim) : 0.25)
+            << "), so contacts could not stick; allowed: a smaller poisson, or "
+               "contact.friction = 0";
+    throw InputError(message.str());
+  }
+}
+
 // Moduli and strengths per bond: the layer holding the bond's midpoint, times a random
 // factor uniform in [1 - spread, 1 + spread] when the scene names heterogeneity.
 void assign_strengths(const Scene& scene, const FailureCriterion* criterion, Model& model) {
@@ -250,6 +281,7 @@ Model build_model(const Scene& scene, const FailureCriterion* criterion) {
     model.shear_stiffness[b] = scale * k.shear;
   }
 
+  if (scene.contact && scene.contact->friction > 0) check_stick_springs(scene, model);
   assign_strengths(scene, criterion, model);
   check_failure_strains(model);
   model.precut.assign(bonds, 0);
