@@ -81,13 +81,6 @@ int failed(const std::exception& e, int status) {
   return status;
 }
 
-std::string text_of_file(const std::string& path) {
-  std::ifstream stream(path, std::ios::binary);
-  std::ostringstream text;
-  text << stream.rdbuf();
-  return text.str();
-}
-
 // What `run` was asked for: a problem to start, or a result file to continue.
 struct RunRequest {
   std::string problem;
@@ -97,6 +90,55 @@ struct RunRequest {
   bool quiet = false, force = false;
   std::string command_line;
 };
+
+// What even --force cannot change on a resume: what the checkpoint's state counts in
+// (the fixed steps of its increment, the loading's direction), the loading already done,
+// and the snapshots already taken. Changing these once gave a "complete" file that had
+// skipped the steps between (increment 1e-3 -> 1e-2), or an unsigned counter that ran
+// below zero (a total below the checkpoint's lambda). The recorded problem is compared
+// when this latfrac can still read it.
+void check_resumable(const Scene& scene, const std::string& resume, const std::string& problem,
+                     const RunCheckpoint& checkpoint) {
+  Scene before;
+  try {
+    before = parse_problem(problem, resume + " /provenance problem", checkpoint.overrides);
+  } catch (const InputError&) {
+    return;  // another version's problem file: nothing to compare against
+  }
+  const auto format_number = [](double value) {
+    std::ostringstream text;
+    text << value;
+    return text.str();
+  };
+  const auto refuse = [&](const std::string& what, const std::string& allowed) {
+    throw InputError("cannot resume '" + resume + "', even with --force: " + what +
+                     "; allowed: " + allowed);
+  };
+  const Stepping& now = scene.stepping;
+  const Stepping& then = before.stepping;
+  if (now.method != then.method ||
+      (now.method == SteppingMethod::fixed && now.increment != then.increment))
+    refuse("the stepping (method or increment) differs from the one the run started with, "
+           "whose steps the checkpoint counts",
+           "the stepping the run started with");
+  const double reached = checkpoint.lambda;
+  const double sense = before.loading.total < 0 ? -1.0 : 1.0;
+  if (!(sense * scene.loading.total >= sense * reached))
+    refuse("loading.total = " + format_number(scene.loading.total) +
+               " is not beyond the lambda the run has reached, " + format_number(reached),
+           "a loading.total at or beyond " + format_number(reached) +
+               " in the direction the run loads");
+  const auto passed = [&](const std::vector<double>& snapshots) {
+    std::vector<double> taken;
+    for (const double lambda : snapshots)
+      if (sense * lambda <= sense * reached) taken.push_back(lambda);
+    return taken;
+  };
+  if (passed(scene.output.snapshots) != passed(before.output.snapshots))
+    refuse("output.snapshots changes snapshots at or before the lambda the run has reached, " +
+               format_number(reached) + ", which cannot be taken again",
+           "the same snapshots up to that lambda; later ones may change");
+}
 
 // A resume: the checkpoint and results so far, and the problem they belong to. The
 // problem is the file given, or else the file the run started from (or its recorded text
@@ -110,7 +152,7 @@ Scene resumed_scene(const RunRequest& request, ResumePoint& point) {
   const std::string path = request.problem.empty() ? checkpoint.problem_path : request.problem;
   std::error_code missing;
   const bool readable = !path.empty() && fs::is_regular_file(path, missing);
-  const std::string text = readable ? text_of_file(path) : recorded.problem;
+  const std::string text = readable ? read_problem_text(path) : recorded.problem;
   const std::vector<std::string>& sets = request.sets.empty() ? checkpoint.overrides : request.sets;
   if (!request.force) {
     const std::string advice = "; pass --force to resume anyway";
@@ -134,7 +176,9 @@ Scene resumed_scene(const RunRequest& request, ResumePoint& point) {
                        code_version() + " (commit " + code_commit() + ")" + advice);
     }
   }
-  return parse_problem(text, path.empty() ? request.resume : path, sets);
+  Scene scene = parse_problem(text, path.empty() ? request.resume : path, sets);
+  if (request.force) check_resumable(scene, request.resume, recorded.problem, checkpoint);
+  return scene;
 }
 
 int run_command(const RunRequest& request) {
@@ -309,12 +353,17 @@ std::size_t chosen_snapshot(const RunResult& result, double lambda) {
 int analyze_command(const std::string& path, bool json, double lambda) {
   // 1. Read the result; 2. analyse the faults of the chosen snapshot; 3. print.
   const RunResult result = read_result_file(path);
-  if (result.snapshots.empty()) {
+  // A result without snapshots (a run stopped before its first) has no faults to analyse:
+  // "faults" is null in JSON.
+  const bool none = result.snapshots.empty();
+  if (none && !json) {
     std::cout << summary_text(result) << "fault analysis: the result holds no snapshot\n";
     return 0;
   }
-  const FaultReport report = analyze_faults(result, chosen_snapshot(result, lambda));
+  std::optional<FaultReport> report;
+  if (!none) report = analyze_faults(result, chosen_snapshot(result, lambda));
   if (json) {
+    const std::string faults = report ? to_json(*report) : "null";
     const RunSummary& s = result.summary;
     std::printf(
         "{\"name\": \"%s\", \"model\": \"%s\", \"dim\": %d, \"nodes\": %zu, \"bonds\": %zu, \"breaks\": %lld, "
@@ -324,10 +373,10 @@ int analyze_command(const std::string& path, bool json, double lambda) {
         result.scene.name.c_str(), result.scene.model.c_str(), result.scene.dim, result.node_count(), result.bond_count(),
         static_cast<long long>(s.breaks), s.final_lambda, s.wall_seconds,
         static_cast<long long>(s.solves), static_cast<long long>(s.factorizations),
-        static_cast<long long>(s.factor_updates), result.snapshots.size(), to_json(report).c_str());
+        static_cast<long long>(s.factor_updates), result.snapshots.size(), faults.c_str());
     return 0;
   }
-  std::cout << summary_text(result) << "\n" << to_text(report);
+  std::cout << summary_text(result) << "\n" << to_text(*report);
   return 0;
 }
 
@@ -410,7 +459,10 @@ int main(int argc, char** argv) {
   RunRequest request;
   auto* run = app.add_subcommand("run", "run a problem file and write its results");
   run->add_option("problem", problem, "the problem file (TOML)")->check(CLI::ExistingFile);
-  run->add_option("-o,--output", out_dir, "output directory (default out/<name>/)");
+  // An empty -o "" would fall back to the default silently: refused.
+  run->add_option("-o,--output", out_dir, "output directory (default out/<name>/)")
+      ->check(CLI::Validator([](std::string& v) { return v.empty() ? "an empty directory name" : ""; },
+                             "DIR", "non-empty"));
   run->add_option("--set", sets, "override a key: --set lattice.spacing=500");
   run->add_flag("--quiet", quiet, "print nothing but errors");
   run->add_flag("--force", force,
@@ -440,7 +492,9 @@ int main(int argc, char** argv) {
       ->add_option("--increments", increments,
                    "fixed-step increments ds, comma-separated: 1e-2,3e-3,1e-3")
       ->required();
-  study->add_option("-o,--output", out_dir, "output directory (default out/<name>/study/)");
+  study->add_option("-o,--output", out_dir, "output directory (default out/<name>/study/)")
+      ->check(CLI::Validator([](std::string& v) { return v.empty() ? "an empty directory name" : ""; },
+                             "DIR", "non-empty"));
   study->add_option("--set", sets, "override a key: --set lattice.spacing=500");
   study->add_flag("--relaxation", relaxation,
                   "also run each increment with solver.method = relaxation");
@@ -466,7 +520,8 @@ int main(int argc, char** argv) {
       ->required();
   render->add_option("--width", width, "picture width in pixels")->check(CLI::Range(200, 20000));
   render->add_option("--exaggeration", exaggeration,
-                     "displacement magnification (default: the scene's)");
+                     "displacement magnification (default: the scene's)")
+      ->check(CLI::Range(0.0, max_exaggeration));
   render->add_option("--view", names.view, "section, map (3-D) or oblique (3-D); default section");
   render->add_option("--style", names.style,
                      "cracks (broken bonds coloured by mode) or particles (the paper's red "

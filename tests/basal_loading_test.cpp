@@ -104,3 +104,23 @@ TEST_CASE("basal discontinuity: the base bond across x_d breaks first, at the ha
   CHECK(result.events.front().bond == across);
   CHECK(result.events.front().lambda == Approx(expected).epsilon(1e-12));
 }
+
+TEST_CASE("the tensile criterion needs no shear strength: without friction_angle or tau0 it "
+          "runs, and breaks what it breaks with them",
+          "[loading][criterion][input]") {
+  // Tensile failure reads sigma0 alone (docs/criteria.md), so a [strength] of criterion and
+  // sigma0 is complete; its bonds' tau0 is inf (none), which the builder's check of
+  // overflowing strengths once refused.
+  Scene scene = basal_scene(7500);
+  scene.strength = testing::strength_of(Criterion::tensile, 50e6);
+  scene.stepping = {SteppingMethod::event, 0};
+  const RunResult with_angle = run_scene(scene, {});
+  scene.strength->friction_angle.reset();
+  const RunResult without = run_scene(scene, {});
+  REQUIRE(!with_angle.events.empty());
+  REQUIRE(without.events.size() == with_angle.events.size());
+  for (std::size_t k = 0; k < without.events.size(); ++k) {
+    CHECK(without.events[k].bond == with_angle.events[k].bond);
+    CHECK(without.events[k].lambda == with_angle.events[k].lambda);
+  }
+}

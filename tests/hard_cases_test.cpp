@@ -531,3 +531,38 @@ TEST_CASE("Hard: updates fall back to a fresh factorization when the residual ch
     CHECK(solver.counters().factorizations == 2);  // it did fall back once
   }
 }
+
+TEST_CASE("Bad input: the model builder's refusals name the layer that causes them",
+          "[hard][input]") {
+  // A layer's density whose weights overflow, and a layer at the lattice's largest nu
+  // (ks = 0) under frictional contact: the message names the layer, not the scene's
+  // material (which is fine in both).
+  Scene scene = testing::box_scene(2, 1.0, {20.0, 0, 10.0}, true);
+  Layer layer;
+  layer.z_min = 0.0;
+  layer.z_max = 5.0;
+  layer.material = scene.material;
+  layer.material.density = 1e300;
+  scene.layers.push_back(layer);
+  const auto message_of = [](const Scene& s) -> std::string {
+    try {
+      build_model(s);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  std::string message = message_of(scene);
+  INFO(message);
+  CHECK(message.find("the density of the [[layer]] from z = 0 to 5 m = 1e+300") !=
+        std::string::npos);
+  scene.layers[0].material.density = scene.material.density;
+  scene.layers[0].material.poisson = 0.25;
+  scene.contact = Contact{true, 0.6};
+  message = message_of(scene);
+  INFO(message);
+  CHECK(message.find("contact.friction: 0.6") == 0);
+  CHECK(message.find("the [[layer]] from z = 0 to 5 m with poisson = 0.25") != std::string::npos);
+  scene.layers[0].material.poisson = 0.2;
+  CHECK(message_of(scene).empty());
+}

@@ -289,4 +289,13 @@ TEST_CASE("snapshot_nearest picks the nearest lambda, the last for NaN", "[rende
   CHECK(snapshot_nearest(result, 0.016) == 1);
   CHECK(snapshot_nearest(result, 0.031) == 2);
   CHECK(snapshot_nearest(result, std::nan("")) == 2);
+  // Far beyond the range, where the distances round to one value: still the nearest end.
+  CHECK(snapshot_nearest(result, 1e15) == 2);
+  CHECK(snapshot_nearest(result, 1e308) == 2);
+  CHECK(snapshot_nearest(result, -1e308) == 0);
+  // A compression run's snapshots go down: the ends are found by value, not position.
+  for (auto& snapshot : result.snapshots) snapshot.lambda = -snapshot.lambda;
+  CHECK(snapshot_nearest(result, -1e15) == 2);
+  CHECK(snapshot_nearest(result, 1e15) == 0);
+  CHECK(snapshot_nearest(result, -0.016) == 1);
 }

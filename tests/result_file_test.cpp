@@ -8,7 +8,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
+#include <string>
 
 #include "latfrac/base/error.h"
 #include "sample_result.h"
@@ -247,6 +249,31 @@ TEST_CASE("reading something that is not a complete latfrac result says why", "[
     });
     CHECK_THAT(thrown_message<InputError>([&] { read_result_file(path); }),
                Contains("/snapshots/1 is missing"));
+  }
+  SECTION("a result with a flipped bit in a dataset's values (its checksum fails)") {
+    // A value no other array holds, found in the file's bytes and its lowest mantissa bit
+    // flipped: the number stays finite and plausible, so only the checksum can tell.
+    RunResult result = sample_result();
+    const double marker = 1234.5678901234567;
+    result.snapshots[1].displacement[4] = marker;
+    write_result_file(path, result);
+    std::string bytes;
+    {
+      std::ifstream in(path, std::ios::binary);
+      bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    char pattern[sizeof marker];
+    std::memcpy(pattern, &marker, sizeof marker);
+    const std::size_t at = bytes.find(std::string(pattern, sizeof pattern));
+    REQUIRE(at != std::string::npos);
+    REQUIRE(bytes.find(std::string(pattern, sizeof pattern), at + 1) == std::string::npos);
+    bytes[at] = static_cast<char>(bytes[at] ^ 1);
+    {
+      std::ofstream out(path, std::ios::binary | std::ios::trunc);
+      out << bytes;
+    }
+    CHECK_THAT(thrown_message<InputError>([&] { read_result_file(path); }),
+               Contains("/snapshots/1/displacement") && Contains("damaged"));
   }
 }
 

@@ -33,6 +33,17 @@ void validate(const LatticeSpec& spec) {
               << " m is smaller than two spacings (2 x " << spec.spacing << " m)";
       throw InputError(message.str());
     }
+    // (A lattice of no nodes was built at spacing 1e-15 under --force.)
+    constexpr double most_spacings = max_spacings_per_axis;
+    if (length / spec.spacing > most_spacings) {
+      std::ostringstream message;
+      message << "lattice.spacing: " << spec.spacing << " m puts " << length / spec.spacing
+              << " spacings along the " << axis_names[axis] << " extent of " << length
+              << " m, more than " << most_spacings
+              << " (no machine holds such a lattice, even with --force); allowed: at most "
+              << most_spacings << " spacings per axis";
+      throw InputError(message.str());
+    }
   }
 }
 

@@ -1,6 +1,9 @@
 // Writing and reading the /checkpoint group: the state a stopped run continues from.
 #include "checkpoint_group.h"
 
+#include <cmath>
+#include <cstdint>
+#include <limits>
 #include <sstream>
 
 #include "hdf5_arrays.h"
@@ -30,6 +33,24 @@ hsize_t length_of(hid_t file, const std::string& path) {
   return shape[0];
 }
 
+// A lambda that may be "none" (EventSource::none, a NaN in memory): written as 0 with an
+// attribute NAME_none = 1, so that no file holds a NaN (docs/robustness.md); older files
+// that wrote the NaN itself read as before.
+void write_optional_lambda(hid_t file, const char* name, double lambda) {
+  const bool none = std::isnan(lambda);
+  hdf5::write_attribute(file, group, name, none ? 0.0 : lambda);
+  if (none)
+    hdf5::write_attribute(file, group, (std::string(name) + "_none").c_str(), std::uint8_t{1});
+}
+
+double read_optional_lambda(hid_t file, const char* name) {
+  const std::string flag = std::string(name) + "_none";
+  if (hdf5::has_attribute(file, group, flag.c_str()) &&
+      hdf5::read_attribute<std::uint8_t>(file, group, flag.c_str()) != 0)
+    return std::numeric_limits<double>::quiet_NaN();
+  return hdf5::read_attribute<double>(file, group, name);
+}
+
 }  // namespace
 
 void write_checkpoint_group(hid_t file, const RunCheckpoint& c) {
@@ -43,7 +64,7 @@ void write_checkpoint_group(hid_t file, const RunCheckpoint& c) {
   hdf5::write_attribute(file, group, "snapshots_taken", c.snapshots_taken);
   hdf5::write_attribute(file, group, "next_cascade", c.next_cascade);
   hdf5::write_attribute(file, group, "fragments_at_start", c.fragments_at_start);
-  hdf5::write_attribute(file, group, "switch_lambda", c.switches.lambda);
+  write_optional_lambda(file, "switch_lambda", c.switches.lambda);
   hdf5::write_attribute(file, group, "switch_at_start",
                         static_cast<std::uint8_t>(c.switches.switch_at_start));
   hdf5::write_string_attribute(file, group, "problem_path", c.problem_path);
@@ -129,7 +150,7 @@ void write_checkpoint_group(hid_t file, const RunCheckpoint& c) {
   hdf5::write_dataset(file, group + "/switch_sets", sets, {c.switches.sets.size(), bonds});
   // Friction's unstable-contact guard (absent in files without friction).
   if (!c.switches.stuck_bonds.empty() || !c.switches.unstable.empty()) {
-    hdf5::write_attribute(file, group, "unstable_lambda", c.switches.unstable_lambda);
+    write_optional_lambda(file, "unstable_lambda", c.switches.unstable_lambda);
     hdf5::write_dataset(file, group + "/stuck_bond", c.switches.stuck_bonds,
                         {c.switches.stuck_bonds.size()});
     hdf5::write_dataset(file, group + "/stuck_lambda", c.switches.stuck_lambdas,
@@ -151,7 +172,7 @@ RunCheckpoint read_checkpoint_group(hid_t file) {
   c.snapshots_taken = hdf5::read_attribute<std::int64_t>(file, group, "snapshots_taken");
   c.next_cascade = hdf5::read_attribute<std::int64_t>(file, group, "next_cascade");
   c.fragments_at_start = hdf5::read_attribute<std::int64_t>(file, group, "fragments_at_start");
-  c.switches.lambda = hdf5::read_attribute<double>(file, group, "switch_lambda");
+  c.switches.lambda = read_optional_lambda(file, "switch_lambda");
   c.switches.switch_at_start =
       hdf5::read_attribute<std::uint8_t>(file, group, "switch_at_start") != 0;
   c.problem_path = hdf5::read_string_attribute(file, group, "problem_path");
@@ -250,7 +271,7 @@ RunCheckpoint read_checkpoint_group(hid_t file) {
   for (hsize_t i = 0; i < sets_shape[0]; ++i)
     c.switches.sets.emplace_back(sets.begin() + i * bonds, sets.begin() + (i + 1) * bonds);
   if (hdf5::exists(file, group + "/stuck_bond")) {
-    c.switches.unstable_lambda = hdf5::read_attribute<double>(file, group, "unstable_lambda");
+    c.switches.unstable_lambda = read_optional_lambda(file, "unstable_lambda");
     c.switches.stuck_bonds = hdf5::read_dataset<std::int64_t>(
         file, group + "/stuck_bond", {length_of(file, group + "/stuck_bond")});
     c.switches.stuck_lambdas = hdf5::read_dataset<double>(

@@ -1,6 +1,8 @@
 // Typed, checked reads and writes of HDF5 datasets, attributes and groups by absolute path.
 #include "hdf5_arrays.h"
 
+#include <algorithm>
+
 #include "hdf5_handles.h"
 #include "latfrac/base/error.h"
 
@@ -94,14 +96,26 @@ hsize_t link_count(hid_t file, const std::string& group_path) {
   return info.nlinks;
 }
 
-// Contiguous layout: chunking (needed for compression) cannot have zero-sized chunks, and
-// the arrays are written once and read whole.
+// A non-empty array is stored in chunks of at most about 1 MiB, each with a Fletcher-32
+// checksum that HDF5 verifies on every read: a damaged file (a flipped byte that still
+// reads as a finite number) fails to read instead of giving absurd values. An empty
+// array is contiguous (a chunk cannot be empty). The arrays are written once and read whole.
 void write_array(hid_t file, const std::string& path, hid_t file_type, hid_t memory_type,
                  const void* values, const Shape& shape) {
   Handle space = checked(H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr),
                          H5Sclose, "H5Screate_simple", path);
+  Handle layout = checked(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "H5Pcreate", path);
+  if (element_count(shape) > 0) {
+    Shape chunk = shape;
+    const hsize_t row_bytes = element_count(shape) / shape[0] * H5Tget_size(file_type);
+    chunk[0] = std::clamp<hsize_t>((hsize_t{1} << 20) / std::max<hsize_t>(row_bytes, 1), 1,
+                                   shape[0]);
+    check(H5Pset_chunk(layout.get(), static_cast<int>(chunk.size()), chunk.data()),
+          "H5Pset_chunk", path);
+    check(H5Pset_fletcher32(layout.get()), "H5Pset_fletcher32", path);
+  }
   Handle dataset = checked(
-      H5Dcreate2(file, path.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+      H5Dcreate2(file, path.c_str(), file_type, space.get(), H5P_DEFAULT, layout.get(), H5P_DEFAULT),
       H5Dclose, "H5Dcreate2", path);
   if (element_count(shape) > 0) {
     check(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values), "H5Dwrite",
@@ -128,8 +142,11 @@ void read_array(hid_t file, const std::string& path, hid_t memory_type, void* va
   Handle stored_type = checked(H5Dget_type(dataset.get()), H5Tclose, "H5Dget_type", path);
   require_number_type(stored_type.get(), "dataset " + path);
   if (element_count(shape) > 0) {
-    check(H5Dread(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values), "H5Dread",
-          path);
+    // A checksum that does not match fails here: say what that means.
+    if (H5Dread(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values) < 0)
+      throw InputError("dataset " + path +
+                       " cannot be read (H5Dread failed; a stored checksum that does not match "
+                       "means the file is damaged)");
   }
 }
 

@@ -13,21 +13,6 @@
 namespace latfrac {
 namespace {
 
-std::string read_text(const std::string& path) {
-  const auto fail = [&] {
-    throw InputError("cannot read problem file '" + path + "': " + std::strerror(errno));
-  };
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                             &std::fclose);
-  if (!file) fail();
-  std::string text;
-  char buffer[65536];
-  std::size_t count = 0;
-  while ((count = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, count);
-  if (std::ferror(file.get())) fail();
-  return text;
-}
-
 // The line of the first byte that is not UTF-8 text, or 0 when the text is clean.
 std::size_t first_invalid_utf8_line(const std::string& text) {
   std::size_t line = 1;
@@ -183,6 +168,28 @@ void apply_override(toml::table& root, const std::string& text, problem::Origin&
 
 }  // namespace
 
+std::string read_problem_text(const std::string& path) {
+  const auto fail = [&] {
+    throw InputError("cannot read problem file '" + path + "': " + std::strerror(errno));
+  };
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                             &std::fclose);
+  if (!file) fail();
+  std::string text;
+  char buffer[65536];
+  std::size_t count = 0;
+  while ((count = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) {
+    if (text.size() + count > max_problem_bytes)
+      throw InputError("problem file '" + path + "' is longer than " +
+                       std::to_string(max_problem_bytes >> 20) +
+                       " MiB (or a device that never ends); allowed: a TOML text file of at "
+                       "most that size");
+    text.append(buffer, count);
+  }
+  if (std::ferror(file.get())) fail();
+  return text;
+}
+
 Scene parse_problem(const std::string& text, const std::string& source_name,
                     const std::vector<std::string>& overrides) {
   toml::table root = parse_toml(text, source_name);
@@ -195,7 +202,7 @@ Scene parse_problem(const std::string& text, const std::string& source_name,
 }
 
 Scene read_problem_file(const std::string& path, const std::vector<std::string>& overrides) {
-  return parse_problem(read_text(path), path, overrides);
+  return parse_problem(read_problem_text(path), path, overrides);
 }
 
 }  // namespace latfrac

@@ -1,8 +1,21 @@
 // The [lattice] section, and the Poisson's ratios the chosen lattice can represent.
+#include "latfrac/geometry/lattice.h"
 #include "latfrac/mechanics/random_calibration.h"
 #include "problem_reader.h"
 
+#include <iomanip>
+#include <sstream>
+
 namespace latfrac::problem {
+namespace {
+
+std::string rounded(double value) {
+  std::ostringstream text;
+  text << std::setprecision(3) << value;
+  return text.str();
+}
+
+}  // namespace
 
 LatticeSpec read_lattice(const Section& top) {
   const Section s = top.required_section(
@@ -34,6 +47,13 @@ LatticeSpec read_lattice(const Section& top) {
              "extent " + format_number(extent) + " m is less than 2 spacings of " +
                  format_number(lattice.spacing) + " m",
              "allowed: each extent >= 2 * lattice.spacing");
+    }
+    if (extent / lattice.spacing > max_spacings_per_axis) {
+      s.fail("spacing",
+             format_number(lattice.spacing) + " m puts " + rounded(extent / lattice.spacing) +
+                 " spacings along an extent of " + format_number(extent) +
+                 " m (no machine holds such a lattice, even with --force)",
+             "allowed: at most " + format_number(max_spacings_per_axis) + " spacings per axis");
     }
   }
 

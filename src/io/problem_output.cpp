@@ -1,6 +1,7 @@
 // The [output] section of a problem file: snapshots, and what the picture of the final state shows.
 #include <cmath>
 
+#include "latfrac/scene/picture_options.h"
 #include "problem_reader.h"
 
 namespace latfrac::problem {
@@ -66,7 +67,10 @@ void read_output(const Section& top, Scene& scene) {
                  "section_x"});
   if (!s) return;
   read_snapshots(*s, scene);
-  scene.output.exaggeration = s->number("exaggeration", non_negative(), 1.0);
+  // Bounded so that an exaggerated motion stays a finite number (1e308 failed in the
+  // picture, after the whole run).
+  scene.output.exaggeration =
+      s->number("exaggeration", {0, max_exaggeration, false, false, ""}, 1.0);
   scene.output.picture = s->boolean("picture").value_or(true);
   read_picture(*s, scene.lattice, scene.output);
 }

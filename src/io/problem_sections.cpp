@@ -29,6 +29,13 @@ std::string read_name(const Section& top) {
   const bool valid_characters = std::all_of(name.begin(), name.end(), [](char c) {
     return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
   });
+  // Output files add a suffix (".h5.partial", "-study.png") to the name, within the 255
+  // bytes a file name can have.
+  constexpr std::size_t longest = 200;
+  if (name.size() > longest)
+    top.fail("name",
+             "is " + std::to_string(name.size()) + " characters long, too long to name files",
+             "allowed: at most " + std::to_string(longest) + " characters");
   const bool only_dots = name.find_first_not_of('.') == std::string::npos;
   if (!valid_characters || only_dots) {
     top.fail("name", name_of(name) + " cannot name output files", allowed);
@@ -273,7 +280,9 @@ void read_effects(const Section& top, Scene& scene) {
                   " lattice (a bond's prestress is its Voronoi facet's share of the stress)",
               "allowed: \"lithostatic\" with lattice.kind = \"random\", or \"elastic\"");
     }
-    if (const auto ratio = s->number("stress_ratio", non_negative())) {
+    // K of the crust lies between about 0.2 and a few (larger near the surface); beyond 100
+    // the prestress dwarfs gravity and the runs fail or fly apart (K = 1e4: 524 km).
+    if (const auto ratio = s->number("stress_ratio", {0, 100, false, false, ""})) {
       if (!scene.gravity->lithostatic)
         s->fail("stress_ratio",
                 "has no effect: the elastic start's horizontal stress is gravity's "

@@ -51,17 +51,17 @@ void check_sizes(const RunResult& result) {
   }
 }
 
-// The last guard of "no NaN in the output": a result with a value that is not a finite
-// number is not written at all. Solvers check their residuals, so this means a bug.
-void check_finite(const RunResult& result) {
-  auto check = [](const std::vector<double>& values, const std::string& what) {
+// Where the result first holds a value that is not a finite number: "inf in snapshot 0
+// displacement (entry 12)", or nothing.
+std::optional<std::string> first_non_finite(const RunResult& result) {
+  std::optional<std::string> found;
+  auto check = [&](const std::vector<double>& values, const std::string& what) {
+    if (found) return;
     const auto bad = std::find_if(values.begin(), values.end(),
                                   [](double v) { return !std::isfinite(v); });
-    if (bad != values.end()) {
-      throw Error("refusing to write a result with " + std::to_string(*bad) + " in " + what +
-                  " (entry " + std::to_string(bad - values.begin()) +
-                  "): this is a bug in latfrac; please report it with the problem file");
-    }
+    if (bad != values.end())
+      found = std::to_string(*bad) + " in " + what + " (entry " +
+              std::to_string(bad - values.begin()) + ")";
   };
   check(result.positions, "lattice/positions");
   for (std::size_t i = 0; i < result.events.size(); ++i) {
@@ -77,7 +77,20 @@ void check_finite(const RunResult& result) {
     check(snapshot.bond_failure_index, name + "bond_f");
     check(snapshot.node_stress, name + "node_stress");
   }
+  return found;
 }
+
+}  // namespace
+
+// The last guard of "no NaN in the output": a result with a value that is not a finite
+// number is not written at all. Solvers check their residuals, so this means a bug.
+void check_result_finite(const RunResult& result) {
+  if (const auto bad = first_non_finite(result))
+    throw Error("refusing to write a result with " + *bad +
+                ": this is a bug in latfrac; please report it with the problem file");
+}
+
+namespace {
 
 void write_provenance(hid_t file, const Provenance& provenance) {
   const std::string group = "/provenance";
@@ -398,7 +411,7 @@ RunResult read_contents(hid_t file) {
 void write_result_file(const std::string& path, const RunResult& result,
                        const RunCheckpoint* checkpoint) {
   check_sizes(result);
-  check_finite(result);
+  check_result_finite(result);
   hdf5::QuietErrors quiet;
   try {
     write_atomically(path,
@@ -442,7 +455,15 @@ auto read_from(const std::string& path, Read read) {
 
 }  // namespace
 
-RunResult read_result_file(const std::string& path) { return read_from(path, read_contents); }
+RunResult read_result_file(const std::string& path) {
+  RunResult result = read_from(path, read_contents);
+  // latfrac writes no value that is not finite (check_result_finite), so one is damage:
+  // analyze and render would print "inf m" and draw nothing.
+  if (const auto bad = first_non_finite(result))
+    throw InputError("'" + path + "' holds " + *bad +
+                     ", which latfrac never writes: the file is damaged");
+  return result;
+}
 
 RunCheckpoint read_checkpoint(const std::string& path) {
   const bool complete = read_from(path, [](hid_t file) { return read_summary(file).complete; });

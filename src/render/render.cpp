@@ -129,6 +129,15 @@ std::array<double, 2> PictureReport::pixel_of(const std::array<double, 3>& posit
 std::size_t snapshot_nearest(const RunResult& result, double lambda) {
   if (result.snapshots.empty()) throw InputError("render: the result has no snapshots");
   if (std::isnan(lambda)) return result.snapshots.size() - 1;
+  // Beyond the snapshots' range the nearest is the end on that side; the distances alone
+  // would tie there when lambda dwarfs them (|1e15 - 0.01| == |1e15 - 0.04| in doubles).
+  std::size_t lowest = 0, highest = 0;
+  for (std::size_t i = 1; i < result.snapshots.size(); ++i) {
+    if (result.snapshots[i].lambda < result.snapshots[lowest].lambda) lowest = i;
+    if (result.snapshots[i].lambda > result.snapshots[highest].lambda) highest = i;
+  }
+  if (lambda >= result.snapshots[highest].lambda) return highest;
+  if (lambda <= result.snapshots[lowest].lambda) return lowest;
   std::size_t nearest = 0;
   for (std::size_t i = 1; i < result.snapshots.size(); ++i)
     if (std::abs(result.snapshots[i].lambda - lambda) <

@@ -7,6 +7,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <string_view>
 
 #include "latfrac/base/error.h"
 #include "latfrac/criteria/criterion.h"
@@ -100,12 +101,15 @@ void assign_strengths(const Scene& scene, const FailureCriterion* criterion, Mod
 // The failure indices are squares of stress over strength. A strength below 1e-12 of the
 // modulus (a failure strain that no rock has) makes f overflow to inf under any loading:
 // refused with the values, before any solve.
-void check_failure_strains(const Model& model) {
+// A criterion without a shear strength (tensile, with neither tau0 nor friction_angle)
+// gives every bond tau0 = inf, meaning none: only a finite resolved tau0 is checked.
+void check_failure_strains(const Model& model, bool has_shear_strength) {
   constexpr double smallest_failure_strain = 1e-12;
   std::ostringstream message;
   for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
     for (const auto& [name, strength] :
          {std::pair{"sigma0", model.bond_sigma0[b]}, std::pair{"tau0", model.bond_tau0[b]}}) {
+      if (!has_shear_strength && std::string_view(name) == "tau0") continue;
       if (!std::isfinite(strength)) {
         // A layer's sigma0 near 1e308 scales a derived tau0 past the doubles' range.
         message << "strength." << name << " of bond " << b
@@ -283,7 +287,7 @@ Model build_model(const Scene& scene, const FailureCriterion* criterion) {
 
   if (scene.contact && scene.contact->friction > 0) check_stick_springs(scene, model);
   assign_strengths(scene, criterion, model);
-  check_failure_strains(model);
+  check_failure_strains(model, criterion && std::isfinite(criterion->parameters().tau0));
   model.precut.assign(bonds, 0);
   for (std::int64_t b : bonds_crossing_precuts(lattice, scene.precuts)) {
     model.precut[b] = 1;
@@ -306,9 +310,21 @@ Model build_model(const Scene& scene, const FailureCriterion* criterion) {
     // A weight beyond the doubles' range would carry inf, then NaN, into every solve; so
     // would weights whose squares overflow in the residual's norm (a density of 1e300
     // kg/m^3 failed in the first solve with a conditioning error that named no key).
+    // Name the density that did it: the scene's, or the densest layer's.
+    std::string density_key = "material.density";
+    double density = scene.material.density;
+    for (const Layer& layer : scene.layers) {
+      if (layer.material.density > density) {
+        density = layer.material.density;
+        std::ostringstream key;
+        key << "the density of the [[layer]] from z = " << layer.z_min << " to " << layer.z_max
+            << " m";
+        density_key = key.str();
+      }
+    }
     std::ostringstream message;
-    message << "gravity.g = " << scene.gravity->g << " m/s^2 and material.density = "
-            << scene.material.density
+    message << "gravity.g = " << scene.gravity->g << " m/s^2 and " << density_key << " = "
+            << density
             << " kg/m^3 give nodes' weights whose squares are not finite numbers (density "
                "times g times a node's volume overflows); allowed: weights that are finite "
                "when squared, as any physical density's and g's are";

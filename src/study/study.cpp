@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "latfrac/base/error.h"
+#include "latfrac/io/result_file.h"
 #include "latfrac/scene/run.h"
 #include "study_format.h"
 
@@ -174,6 +175,7 @@ StudyResult run_study(const Scene& scene, const StudyOptions& options) {
       variant = run_variant(scene, SteppingMethod::event, 0, scene.solver.method);
     }
     const RunResult reference = run_scene(variant, run_options);
+    check_result_finite(reference);  // as `latfrac run` would before writing it
     facts = reference_facts(reference);
     fill_from_run(row, reference, facts);
     report(row);
@@ -188,10 +190,10 @@ StudyResult run_study(const Scene& scene, const StudyOptions& options) {
       row.method = name;
       row.increment = increment;
       try {
-        fill_from_run(
-            row,
-            run_scene(run_variant(scene, SteppingMethod::fixed, increment, solver), run_options),
-            facts);
+        const RunResult run =
+            run_scene(run_variant(scene, SteppingMethod::fixed, increment, solver), run_options);
+        check_result_finite(run);  // a row of NaN would read as a result
+        fill_from_run(row, run, facts);
       } catch (const InputError& error) {
         row.status = RunStatus::not_available;
         row.note = error.what();

@@ -98,6 +98,11 @@ refuse-changed)
     [[ $status == 0 ]] || break
   done
   [[ $status == 3 ]] || { fail "the run did not stop cleanly: status $status, $(cat "$work/stopped.err")"; exit 1; }
+  # Stopped at once, mostly before its first snapshot: analyze --json still prints JSON.
+  "$latfrac" analyze --json "$h5" 2> /dev/null | python3 -m json.tool > /dev/null ||
+    fail "analyze --json on the stopped file does not print JSON"
+  # No NaN in a checkpoint either (a "none" lambda is written as 0 with a flag).
+  h5dump -A "$h5" | grep -qiw nan && fail "the stopped file holds a NaN attribute"
   sed -i '1i # an edit after the run started' "$problem"
   "$latfrac" run --resume "$h5" --quiet > /dev/null 2> "$work/refused.err"
   status=$?
@@ -108,6 +113,14 @@ refuse-changed)
   "$latfrac" run --resume "$h5" --quiet --set lattice.spacing=1234 > /dev/null 2> "$work/sets.err"
   [[ $? == 2 ]] && grep -q "overrides differ" "$work/sets.err" ||
     fail "changed --set: $(cat "$work/sets.err")"
+  # Not even --force resumes with another increment (the checkpoint counts steps of the
+  # old one) or a total on the other side of the lambda it has reached.
+  for change in "stepping.increment=0.01" "loading.total=-0.01"; do
+    "$latfrac" run --resume "$h5" --quiet --force "${sets[@]}" --set "$change" \
+      --set 'output.snapshots=[]' > /dev/null 2> "$work/forced.err"
+    [[ $? == 2 ]] && grep -q "even with --force" "$work/forced.err" ||
+      fail "--force with $change: $(cat "$work/forced.err")"
+  done
   [[ $(complete_flag "$h5") == 0 ]] || fail "a refused resume changed the file"
   "$latfrac" run --resume "$h5" --quiet > /dev/null 2> "$work/resume.err" ||
     fail "the unchanged problem: resume failed: $(cat "$work/resume.err")"

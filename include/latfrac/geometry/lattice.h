@@ -108,6 +108,10 @@ class Lattice {
   }
 };
 
+// The most spacings along one axis that a lattice may have: beyond it the row counts
+// overflow the integers that count them, and no memory would hold the nodes anyway.
+inline constexpr double max_spacings_per_axis = 1e9;
+
 // Builds the lattice of `spec`. Throws InputError for a non-positive spacing or size, a
 // box smaller than two spacings along an axis, or a dimension other than 2 or 3.
 // The same spec (a random lattice's seed included) gives the same lattice, bit for bit.

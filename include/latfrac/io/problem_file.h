@@ -7,6 +7,7 @@
 // <file>:<line>.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,13 @@ namespace latfrac {
 // read as a TOML value, or as a string when it is not one), and validates the result.
 // Throws InputError.
 Scene read_problem_file(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// The text of the problem file at `path`. A problem file is text of at most
+// max_problem_bytes (64 MiB: 100,000 pre-cuts take about 8 MB); a longer one, or a
+// device that never ends (/dev/zero), is refused with InputError, as is a file that
+// cannot be read. A pipe is read to its end (`latfrac run <(sed ... file.toml)`).
+inline constexpr std::size_t max_problem_bytes = std::size_t{64} << 20;
+std::string read_problem_text(const std::string& path);
 
 // The same from the text of a problem file; `source_name` names it in messages.
 Scene parse_problem(const std::string& text, const std::string& source_name,

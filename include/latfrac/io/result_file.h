@@ -24,6 +24,11 @@ void write_result_file(const std::string& path, const RunResult& result,
 // dataset or attribute, or holds one of the wrong shape; Error if an HDF5 call fails.
 RunResult read_result_file(const std::string& path);
 
+// Throws Error when the result holds a value that is not a finite number (positions,
+// events, fragments, snapshots): the last guard of "no NaN in the output", which
+// write_result_file applies and `latfrac study` applies to each run it tabulates.
+void check_result_finite(const RunResult& result);
+
 // The checkpoint of an incomplete result file. Throws InputError when the run finished
 // (nothing to resume) or the file has no usable /checkpoint group.
 RunCheckpoint read_checkpoint(const std::string& path);

@@ -36,6 +36,11 @@ enum class NodeField {
 
 enum class SectionAxis { y, x };  // the section is the plane of constant y (or x)
 
+// The largest displacement magnification a picture takes (output.exaggeration and
+// render --exaggeration): far beyond any use, and small enough that an exaggerated motion
+// stays a finite number.
+inline constexpr double max_exaggeration = 1e12;
+
 struct PictureOptions {
   PictureView view = PictureView::section;
   CrackStyle style = CrackStyle::cracks;
