@@ -26,6 +26,7 @@
 #include "latfrac/base/stop_signal.h"
 #include "latfrac/base/threads.h"
 #include "latfrac/io/problem_file.h"
+#include "latfrac/scene/model_builder.h"
 #include "latfrac/io/result_file.h"
 #include "latfrac/io/result_writer.h"
 #include "latfrac/io/xdmf.h"
@@ -273,7 +274,22 @@ int run_command(const RunRequest& request) {
 int check_command(const std::string& problem, const std::vector<std::string>& sets) {
   const Scene scene = read_problem_file(problem, sets);
   const SizeEstimate estimate = estimate_size(scene);
+  // The model's own checks (weights and failure strains that overflow, a layer's
+  // density, friction without shear springs) come when it is built: check builds it when
+  // that is quick, so that check and run refuse the same problems.
+  constexpr double most_nodes_to_build = 300000;
+  if (estimate.nodes <= most_nodes_to_build) {
+    try {
+      build_model(scene);
+    } catch (const InputError& e) {
+      throw InputError(problem + ": " + e.what());
+    }
+  }
   std::cout << describe(scene) << "\n" << describe(estimate);
+  if (estimate.nodes > most_nodes_to_build)
+    std::cout << "note: the model's own checks (weights and strengths that overflow, friction "
+                 "without shear springs) run when latfrac run builds it (more than "
+              << most_nodes_to_build << " nodes: not built here)\n";
   const double available = available_memory_bytes();
   if (available > 0) std::cout << "  available memory " << readable_bytes(available) << "\n";
   if (scene.solver.backend == LinearBackendKind::petsc) std::cout << describe_ranks(estimate, available);

@@ -253,13 +253,15 @@ TEST_CASE("Increment lists (--increments): what parses and what is refused", "[s
   CHECK(parse_increments(" 1e-3 , 0.5 ") == std::vector<double>{1e-3, 0.5});
   CHECK(parse_increments("2e-4") == std::vector<double>{2e-4});
   for (const std::string bad : {"", "  ", "abc", "1e-3,", ",1e-3", "1e-3,,1e-4", "0", "-1e-3",
-                                "nan", "inf", "1e-3x", "1e-3;1e-4", "1e-400", "1e-3,1e-3"}) {
+                                "nan", "inf", "1e-3x", "1e-3;1e-4", "1e-400", "1e-3,1e-3", "1e308", "1e-2,1.5"}) {
     INFO("--increments " << bad);
     CHECK_THROWS_AS(parse_increments(bad), InputError);
     CHECK_THROWS_WITH(parse_increments(bad), Contains("--increments: ") && Contains("allowed: "));
   }
   CHECK_THROWS_WITH(parse_increments("1e-3,abc"), Contains("'abc' is not a number"));
   CHECK_THROWS_WITH(parse_increments("-1e-3"), Contains("'-1e-3' is not a positive finite number"));
+  CHECK(parse_increments("1") == std::vector<double>{1.0});
+  CHECK_THROWS_WITH(parse_increments("1e308"), Contains("'1e308' is a strain step above 1"));
   CHECK_THROWS_WITH(parse_increments("1e-3,,1e-4"), Contains("item 2 is empty"));
 }
 

@@ -87,6 +87,11 @@ std::vector<double> parse_increments(const std::string& list) {
       throw InputError("--increments: '" + text + "' is not a number; " + allowed);
     if (!std::isfinite(value) || value <= 0)
       throw InputError("--increments: '" + text + "' is not a positive finite number; " + allowed);
+    // A strain step above 1 is one step over any loading a small-strain scene has (and
+    // 1e308 broke the plot's log axis).
+    if (value > 1)
+      throw InputError("--increments: '" + text + "' is a strain step above 1; " + allowed +
+                       " and at most 1");
     if (std::find(increments.begin(), increments.end(), value) != increments.end())
       throw InputError("--increments: '" + text + "' is listed twice; " + allowed);
     increments.push_back(value);
