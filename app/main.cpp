@@ -26,11 +26,11 @@
 #include "latfrac/base/stop_signal.h"
 #include "latfrac/base/threads.h"
 #include "latfrac/io/problem_file.h"
-#include "latfrac/scene/model_builder.h"
 #include "latfrac/io/result_file.h"
 #include "latfrac/io/result_writer.h"
 #include "latfrac/io/xdmf.h"
 #include "latfrac/render/render.h"
+#include "latfrac/scene/model_builder.h"
 #include "latfrac/scene/run.h"
 #include "latfrac/scene/size_estimate.h"
 #include "latfrac/solvers/linear_backend.h"
@@ -119,9 +119,10 @@ void check_resumable(const Scene& scene, const std::string& resume, const std::s
   const Stepping& then = before.stepping;
   if (now.method != then.method ||
       (now.method == SteppingMethod::fixed && now.increment != then.increment))
-    refuse("the stepping (method or increment) differs from the one the run started with, "
-           "whose steps the checkpoint counts",
-           "the stepping the run started with");
+    refuse(
+        "the stepping (method or increment) differs from the one the run started with, "
+        "whose steps the checkpoint counts",
+        "the stepping the run started with");
   const double reached = checkpoint.lambda;
   const double sense = before.loading.total < 0 ? -1.0 : 1.0;
   if (!(sense * scene.loading.total >= sense * reached))
@@ -382,13 +383,14 @@ int analyze_command(const std::string& path, bool json, double lambda) {
     const std::string faults = report ? to_json(*report) : "null";
     const RunSummary& s = result.summary;
     std::printf(
-        "{\"name\": \"%s\", \"model\": \"%s\", \"dim\": %d, \"nodes\": %zu, \"bonds\": %zu, \"breaks\": %lld, "
+        "{\"name\": \"%s\", \"model\": \"%s\", \"dim\": %d, \"nodes\": %zu, \"bonds\": %zu, "
+        "\"breaks\": %lld, "
         "\"final_lambda\": %.17g, \"wall_seconds\": %.6g, \"solves\": %lld, \"factorizations\": "
         "%lld, "
         "\"factor_updates\": %lld, \"snapshots\": %zu, \"faults\": %s}\n",
-        result.scene.name.c_str(), result.scene.model.c_str(), result.scene.dim, result.node_count(), result.bond_count(),
-        static_cast<long long>(s.breaks), s.final_lambda, s.wall_seconds,
-        static_cast<long long>(s.solves), static_cast<long long>(s.factorizations),
+        result.scene.name.c_str(), result.scene.model.c_str(), result.scene.dim,
+        result.node_count(), result.bond_count(), static_cast<long long>(s.breaks), s.final_lambda,
+        s.wall_seconds, static_cast<long long>(s.solves), static_cast<long long>(s.factorizations),
         static_cast<long long>(s.factor_updates), result.snapshots.size(), faults.c_str());
     return 0;
   }
@@ -476,9 +478,11 @@ int main(int argc, char** argv) {
   auto* run = app.add_subcommand("run", "run a problem file and write its results");
   run->add_option("problem", problem, "the problem file (TOML)")->check(CLI::ExistingFile);
   // An empty -o "" would fall back to the default silently: refused.
+  const CLI::Validator directory(
+      [](std::string& v) { return v.empty() ? "an empty directory name" : ""; }, "DIR",
+      "non-empty");
   run->add_option("-o,--output", out_dir, "output directory (default out/<name>/)")
-      ->check(CLI::Validator([](std::string& v) { return v.empty() ? "an empty directory name" : ""; },
-                             "DIR", "non-empty"));
+      ->check(directory);
   run->add_option("--set", sets, "override a key: --set lattice.spacing=500");
   run->add_flag("--quiet", quiet, "print nothing but errors");
   run->add_flag("--force", force,
@@ -509,8 +513,7 @@ int main(int argc, char** argv) {
                    "fixed-step increments ds, comma-separated: 1e-2,3e-3,1e-3")
       ->required();
   study->add_option("-o,--output", out_dir, "output directory (default out/<name>/study/)")
-      ->check(CLI::Validator([](std::string& v) { return v.empty() ? "an empty directory name" : ""; },
-                             "DIR", "non-empty"));
+      ->check(directory);
   study->add_option("--set", sets, "override a key: --set lattice.spacing=500");
   study->add_flag("--relaxation", relaxation,
                   "also run each increment with solver.method = relaxation");
@@ -535,8 +538,9 @@ int main(int argc, char** argv) {
   render->add_option("-o,--output", png, "the picture to write: FILE.png, FILE.svg or FILE.pdf")
       ->required();
   render->add_option("--width", width, "picture width in pixels")->check(CLI::Range(200, 20000));
-  render->add_option("--exaggeration", exaggeration,
-                     "displacement magnification (default: the scene's)")
+  render
+      ->add_option("--exaggeration", exaggeration,
+                   "displacement magnification (default: the scene's)")
       ->check(CLI::Range(0.0, max_exaggeration));
   render->add_option("--view", names.view, "section, map (3-D) or oblique (3-D); default section");
   render->add_option("--style", names.style,

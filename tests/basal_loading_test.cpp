@@ -105,9 +105,10 @@ TEST_CASE("basal discontinuity: the base bond across x_d breaks first, at the ha
   CHECK(result.events.front().lambda == Approx(expected).epsilon(1e-12));
 }
 
-TEST_CASE("the tensile criterion needs no shear strength: without friction_angle or tau0 it "
-          "runs, and breaks what it breaks with them",
-          "[loading][criterion][input]") {
+TEST_CASE(
+    "the tensile criterion needs no shear strength: without friction_angle or tau0 it "
+    "runs, and breaks what it breaks with them",
+    "[loading][criterion][input]") {
   // Tensile failure reads sigma0 alone (docs/criteria.md), so a [strength] of criterion and
   // sigma0 is complete; its bonds' tau0 is inf (none), which the builder's check of
   // overflowing strengths once refused.

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "hard_case_checks.h"
 #include "latfrac/base/error.h"
 #include "latfrac/base/progress.h"
 #include "latfrac/criteria/criterion.h"
@@ -26,7 +27,6 @@
 #include "latfrac/mechanics/random_calibration.h"
 #include "latfrac/scene/model_builder.h"
 #include "latfrac/scene/run.h"
-#include "hard_case_checks.h"
 #include "scenes.h"
 
 using namespace latfrac;
@@ -709,9 +709,10 @@ TEST_CASE("Hard: a part that slides nearly freely on its slipping contacts is he
   CHECK(largest < 0.04 * scene.lattice.size[0]);
 }
 
-TEST_CASE("Friction needs the broken bonds' shear springs: a lattice at its largest nu "
-          "(ks = 0) is refused with friction and accepted without",
-          "[friction][input]") {
+TEST_CASE(
+    "Friction needs the broken bonds' shear springs: a lattice at its largest nu "
+    "(ks = 0) is refused with friction and accepted without",
+    "[friction][input]") {
   // The stick spring is the bond's own ks (docs/model.md, "Friction on closed contacts").
   // ks = (2/sqrt3)(mu - lambda) vanishes at nu = 1/4 on the triangular lattice, and a random
   // lattice's alpha = ks / kn vanishes at random_lattice_max_poisson: there a contact's

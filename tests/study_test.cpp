@@ -252,8 +252,9 @@ TEST_CASE("Increment lists (--increments): what parses and what is refused", "[s
   CHECK(parse_increments("1e-2,3e-3,1e-3") == std::vector<double>{1e-2, 3e-3, 1e-3});
   CHECK(parse_increments(" 1e-3 , 0.5 ") == std::vector<double>{1e-3, 0.5});
   CHECK(parse_increments("2e-4") == std::vector<double>{2e-4});
-  for (const std::string bad : {"", "  ", "abc", "1e-3,", ",1e-3", "1e-3,,1e-4", "0", "-1e-3",
-                                "nan", "inf", "1e-3x", "1e-3;1e-4", "1e-400", "1e-3,1e-3", "1e308", "1e-2,1.5"}) {
+  for (const std::string bad :
+       {"", "  ", "abc", "1e-3,", ",1e-3", "1e-3,,1e-4", "0", "-1e-3", "nan", "inf", "1e-3x",
+        "1e-3;1e-4", "1e-400", "1e-3,1e-3", "1e308", "1e-2,1.5"}) {
     INFO("--increments " << bad);
     CHECK_THROWS_AS(parse_increments(bad), InputError);
     CHECK_THROWS_WITH(parse_increments(bad), Contains("--increments: ") && Contains("allowed: "));

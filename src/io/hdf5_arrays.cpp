@@ -108,15 +108,15 @@ void write_array(hid_t file, const std::string& path, hid_t file_type, hid_t mem
   if (element_count(shape) > 0) {
     Shape chunk = shape;
     const hsize_t row_bytes = element_count(shape) / shape[0] * H5Tget_size(file_type);
-    chunk[0] = std::clamp<hsize_t>((hsize_t{1} << 20) / std::max<hsize_t>(row_bytes, 1), 1,
-                                   shape[0]);
-    check(H5Pset_chunk(layout.get(), static_cast<int>(chunk.size()), chunk.data()),
-          "H5Pset_chunk", path);
+    chunk[0] =
+        std::clamp<hsize_t>((hsize_t{1} << 20) / std::max<hsize_t>(row_bytes, 1), 1, shape[0]);
+    check(H5Pset_chunk(layout.get(), static_cast<int>(chunk.size()), chunk.data()), "H5Pset_chunk",
+          path);
     check(H5Pset_fletcher32(layout.get()), "H5Pset_fletcher32", path);
   }
-  Handle dataset = checked(
-      H5Dcreate2(file, path.c_str(), file_type, space.get(), H5P_DEFAULT, layout.get(), H5P_DEFAULT),
-      H5Dclose, "H5Dcreate2", path);
+  Handle dataset = checked(H5Dcreate2(file, path.c_str(), file_type, space.get(), H5P_DEFAULT,
+                                      layout.get(), H5P_DEFAULT),
+                           H5Dclose, "H5Dcreate2", path);
   if (element_count(shape) > 0) {
     check(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values), "H5Dwrite",
           path);

@@ -1,10 +1,10 @@
 // The [lattice] section, and the Poisson's ratios the chosen lattice can represent.
+#include <iomanip>
+#include <sstream>
+
 #include "latfrac/geometry/lattice.h"
 #include "latfrac/mechanics/random_calibration.h"
 #include "problem_reader.h"
-
-#include <iomanip>
-#include <sstream>
 
 namespace latfrac::problem {
 namespace {

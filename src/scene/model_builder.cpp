@@ -315,8 +315,9 @@ Model build_model(const Scene& scene, const FailureCriterion* criterion) {
       const double w = std::abs(model.external_force[k]);
       if (w > 0 && w < std::numeric_limits<double>::min()) {
         std::ostringstream message;
-        message << "gravity.g = " << scene.gravity->g << " m/s^2 and the densities (material.density = "
-                << scene.material.density << " kg/m^3) give nodes' weights of " << w
+        message << "gravity.g = " << scene.gravity->g
+                << " m/s^2 and the densities (material.density = " << scene.material.density
+                << " kg/m^3) give nodes' weights of " << w
                 << " N, subnormal numbers that keep too few digits to solve with; allowed: "
                    "weights above 2.2e-308 N (any physical density and g), or no [gravity]";
         throw InputError(message.str());

@@ -183,13 +183,13 @@ EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacem
     // Say where, how far from equilibrium the last iterate was, and what may help: KINSOL's
     // own words name neither the loading nor the settings.
     std::ostringstream where;
-    where << std::scientific << std::setprecision(2) << "equilibrium (Newton, KINSOL) not reached at lambda "
-          << lambda;
+    where << std::scientific << std::setprecision(2)
+          << "equilibrium (Newton, KINSOL) not reached at lambda " << lambda;
     const Vector last = as_vector(k.unknowns);
     const double residual = max_abs(model_.residual(last, lambda)) / load;
     if (std::isfinite(residual))
-      where << ": the last iterate's residual is " << residual << " of the load, against solver.tolerance "
-            << options_.tolerance;
+      where << ": the last iterate's residual is " << residual
+            << " of the load, against solver.tolerance " << options_.tolerance;
     where << " (" << message << "). A body this ill-conditioned (tall and thin, or far from "
           << "equilibrium in large kinematics) may need a larger solver.tolerance, more "
           << "solver.max_iterations (now " << options_.max_iterations
