@@ -243,7 +243,17 @@ int run_command(const RunRequest& request) {
       std::cout << "resuming " << h5 << " from lambda " << point.checkpoint.lambda << " ("
                 << point.result.events.size() << " events)\n";
   }
-  const RunResult result = run_scene(scene, options);
+  RunResult result;
+  try {
+    result = run_scene(scene, options);
+  } catch (const StopWithinEvent& stop) {
+    if (writes)
+      std::cerr << "latfrac: " << stop.what() << "; " << h5
+                << " holds the last checkpoint written before it\n  continue with: latfrac run "
+                   "--resume "
+                << h5 << "\n";
+    return stopped_status;
+  }
   if (!writes) return result.summary.complete ? 0 : stopped_status;
   if (!result.summary.complete) {
     std::cerr << "latfrac: stopped at lambda " << result.summary.final_lambda << " after "

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "latfrac/base/stop_signal.h"
 #include "latfrac/fracture/equilibrium_state.h"
 #include "latfrac/mechanics/node_stress.h"
 #include "latfrac/solvers/equilibrium.h"
@@ -302,4 +303,21 @@ TEST_CASE("Relaxation rejects omega outside (0, 2)", "[relaxation]") {
   Model model = build_model(scene);
   scene.solver.relaxation_omega = 2.0;
   CHECK_THROWS_WITH(RelaxationSolver(scene.solver), Catch::Contains("0 < relaxation_omega < 2"));
+}
+
+TEST_CASE("A stop requested during a relaxation solve ends the solve, not only the run",
+          "[relaxation]") {
+  // One solve can take minutes of sweeps (at nu = 1/4 one ran for ten minutes inside a
+  // break's contact settling, deaf to SIGTERM): a requested stop ends it at its next
+  // residual check, and the solve from scratch reaches equilibrium once the request is gone.
+  Scene scene = testing::box_scene(2, 1.0, {12.0, 0, 6.0}, true);
+  scene.solver.relaxation_tolerance = 1e-12;
+  Model model = build_model(scene);
+  const RelaxationSolver relaxation(scene.solver);
+  Vector u = Vector::Zero(model.dofs().free_count);
+  request_stop();
+  CHECK_THROWS_AS(relaxation.solve(model, 1e-4, u), StopWithinEvent);
+  clear_stop_request();
+  u.setZero();
+  CHECK(relaxation.solve(model, 1e-4, u).converged);
 }

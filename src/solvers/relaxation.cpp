@@ -16,6 +16,7 @@
 #include <string>
 
 #include "latfrac/base/error.h"
+#include "latfrac/base/stop_signal.h"
 
 namespace latfrac {
 namespace {
@@ -253,6 +254,8 @@ RelaxationReport iterate(const Nodes& nodes, Vector& u, double load, double tole
       report.relative_residual = nodes.max_force(u) / load;
       // A diverging iteration (a nonlinear law far from equilibrium) stops here.
       if (!std::isfinite(report.relative_residual)) break;
+      // So does a run asked to stop: a solve can take minutes of sweeps.
+      if (stop_requested()) throw StopWithinEvent();
     }
   }
   report.converged = report.relative_residual <= tolerance;
