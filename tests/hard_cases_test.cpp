@@ -566,3 +566,18 @@ TEST_CASE("Bad input: the model builder's refusals name the layer that causes th
   scene.layers[0].material.poisson = 0.2;
   CHECK(message_of(scene).empty());
 }
+
+TEST_CASE("Bad input: a tolerance below the rounding floor is named as such, not as an "
+          "ill-conditioned stiffness",
+          "[hard][input]") {
+  // An intact box under gravity: its weakest pivot is far from a mechanism, so a solve that
+  // misses 1e-18 (below any double-precision solve) is at the rounding floor. The message
+  // once blamed conditioning and advised contact.
+  Scene scene = testing::box_scene(2, 1.0, {40.0, 0, 20.0}, true);
+  scene.solver.tolerance = 1e-18;
+  Model model = build_model(scene);
+  EquilibriumSolver solver(model, scene.solver);
+  CHECK_THROWS_WITH(solver.checked_solve(1e-3),
+                    Catch::Contains("rounding floor") && !Catch::Contains("ill-conditioned") &&
+                        Catch::Contains("allowed: solver.tolerance of at least"));
+}
