@@ -208,9 +208,14 @@ EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacem
       max_abs(evaluated ? k.last_residual : model_.residual(free_displacement, lambda)) / load;
   if (report.relative_residual > options_.tolerance) {
     std::ostringstream message;
-    message << std::scientific << std::setprecision(2) << "KINSol stopped (" << flag_name(flag)
-            << ") at lambda " << lambda << " with the residual at " << report.relative_residual
-            << " of the load, above the tolerance " << options_.tolerance;
+    message << std::scientific << std::setprecision(2)
+            << "equilibrium (Newton, KINSOL) not reached at lambda " << lambda
+            << ": KINSOL stopped (" << flag_name(flag) << ") with the residual at "
+            << report.relative_residual << " of the load, above solver.tolerance "
+            << options_.tolerance
+            << " (its steps had become too small to go on: the rounding floor of this system, "
+               "or a law far from equilibrium). A larger solver.tolerance, or smaller loading "
+               "steps, may help";
     throw Error(message.str());
   }
   return report;
