@@ -442,17 +442,20 @@ PictureOptions picture_options(const RenderNames& names, int width, double exagg
 // frictionless contacts under gravity), or a material too soft for its load. The first
 // snapshot where that happens, or "".
 std::string flown_warning(const RunResult& result) {
-  const double size = result.largest_extent();
+  // The body's smallest extent, not its largest: a 5 km slab compressed to -0.5 rose
+  // 29.5 km, within its 60 km length, without a word.
+  const double size = result.smallest_extent();
   for (const Snapshot& snapshot : result.snapshots) {
     double largest = 0;
     for (const double u : snapshot.displacement) largest = std::max(largest, std::abs(u));
     if (!(largest > size)) continue;
     std::ostringstream text;
     text << std::setprecision(3) << "by lambda " << snapshot.lambda << " nodes moved by up to "
-         << largest << " m, more than the lattice's size (" << size
+         << largest << " m, more than the lattice's smallest extent (" << size
          << " m): small-strain mechanics does not hold there, and the results from there on "
             "are not physical (a piece that found no equilibrium, as pieces on frictionless "
-            "contacts under gravity can, or a material too soft for its load; "
+            "contacts under gravity can, a material too soft for its load, or a loading far "
+            "beyond small strain; "
             "docs/robustness.md, \"Mechanisms\")";
     return text.str();
   }

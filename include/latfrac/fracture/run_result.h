@@ -109,6 +109,20 @@ struct RunResult {
     }
     return size;
   }
+  // Its smallest extent over the axes it spans (x and z in 2-D), m (0 without nodes): a
+  // motion beyond it is beyond small strain, however long the body is.
+  double smallest_extent() const {
+    double size = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      double low = std::numeric_limits<double>::infinity(), high = -low;
+      for (std::size_t node = 0; node < node_count(); ++node) {
+        low = std::min(low, positions[3 * node + axis]);
+        high = std::max(high, positions[3 * node + axis]);
+      }
+      if (high > low) size = size > 0 ? std::min(size, high - low) : high - low;
+    }
+    return size;
+  }
 };
 
 }  // namespace latfrac
