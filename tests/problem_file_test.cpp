@@ -325,6 +325,9 @@ TEST_CASE("a malformed --set override is an input error", "[io]") {
              Contains("entries of an array of tables cannot be set from the command line"));
   CHECK_THAT(error_of(minimal, {"lattice.spacing.x=1"}),
              StartsWith("--set lattice.spacing.x: lattice.spacing: is a value, not a section"));
+  // The override of the wrong path is named, not an earlier one beneath it.
+  CHECK_THAT(error_of(minimal, {"lattice.spacing=3000", "lattice="}),
+             StartsWith("--set lattice: lattice: expected a table"));
 }
 
 TEST_CASE("size has 2 numbers in 2-D and 3 in 3-D", "[io]") {

@@ -107,8 +107,12 @@ std::string Origin::where(const toml::node* node, std::string_view key_path) con
   // A node the overrides created: name the override that shares most of its key path.
   std::string prefix(key_path);
   while (!prefix.empty()) {
+    // The override of exactly this path first: `--set lattice.spacing=3000 --set lattice=`
+    // named the first of the two for a wrong `lattice`.
+    for (const std::string& set : override_paths_)
+      if (set == prefix) return "--set " + set;
     for (const std::string& set : override_paths_) {
-      if (set == prefix || set.starts_with(prefix + ".")) return "--set " + set;
+      if (set.starts_with(prefix + ".")) return "--set " + set;
     }
     const std::size_t parent_end = prefix.find_last_of(".[");
     prefix.erase(parent_end == std::string::npos ? 0 : parent_end);
