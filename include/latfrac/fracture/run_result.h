@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -95,32 +96,31 @@ struct RunResult {
 
   std::size_t node_count() const { return positions.size() / 3; }
   std::size_t bond_count() const { return bond_kind.size(); }
-  // The lattice's size: its largest extent along x, y or z over the reference positions,
-  // m (0 without nodes).
-  double largest_extent() const {
-    double size = 0;
+  // The extents along x, y and z of the reference positions, m (0 along an axis the
+  // lattice does not span, and without nodes).
+  std::array<double, 3> extents() const {
+    std::array<double, 3> extent{0, 0, 0};
     for (int axis = 0; axis < 3; ++axis) {
       double low = std::numeric_limits<double>::infinity(), high = -low;
       for (std::size_t node = 0; node < node_count(); ++node) {
         low = std::min(low, positions[3 * node + axis]);
         high = std::max(high, positions[3 * node + axis]);
       }
-      if (high > low) size = std::max(size, high - low);
+      if (high > low) extent[axis] = high - low;
     }
-    return size;
+    return extent;
+  }
+  // The lattice's size: its largest extent, m (0 without nodes).
+  double largest_extent() const {
+    const std::array<double, 3> e = extents();
+    return std::max({e[0], e[1], e[2]});
   }
   // Its smallest extent over the axes it spans (x and z in 2-D), m (0 without nodes): a
   // motion beyond it is beyond small strain, however long the body is.
   double smallest_extent() const {
     double size = 0;
-    for (int axis = 0; axis < 3; ++axis) {
-      double low = std::numeric_limits<double>::infinity(), high = -low;
-      for (std::size_t node = 0; node < node_count(); ++node) {
-        low = std::min(low, positions[3 * node + axis]);
-        high = std::max(high, positions[3 * node + axis]);
-      }
-      if (high > low) size = size > 0 ? std::min(size, high - low) : high - low;
-    }
+    for (const double e : extents())
+      if (e > 0) size = size > 0 ? std::min(size, e) : e;
     return size;
   }
 };
