@@ -1,11 +1,13 @@
 // The threaded sweeps over the bonds: the same numbers bit for bit on any number of
 // threads, and the same as the serial loop over the bonds (docs/model.md, "Threads").
-#include <catch2/catch.hpp>
+#include "latfrac/base/threads.h"
+
 #include <atomic>
+#include <catch2/catch.hpp>
+#include <cmath>
 #include <random>
 
 #include "latfrac/base/error.h"
-#include "latfrac/base/threads.h"
 #include "latfrac/io/problem_file.h"
 #include "latfrac/mechanics/node_stress.h"
 #include "latfrac/scene/run.h"
@@ -122,6 +124,44 @@ TEST_CASE("threaded sweeps give the serial loop's numbers bit for bit", "[thread
   CHECK(zero[1] == stress[0]);  // the path's sweep is node_stresses' at its start
   CHECK(per_unit[1] == per_unit[0]);
   CHECK(per_unit[0] == node_stress_rates(s.model, s.rate));
+}
+
+TEST_CASE("node stresses at a few nodes are node_stresses' there, bit for bit", "[threads]") {
+  // The sample (gravity, face pieces on a random lattice, a tenth of the bonds open), and
+  // the complete model's section with a lithostatic start under an overburden (the top
+  // face's pressure and the prestress's out-of-plane term).
+  const Scene stressed = read_problem_file(
+      std::string(LATFRAC_PROBLEMS_DIR) + "/graben-complete-2d.toml",
+      {"lattice.spacing=2000", "gravity.initial_stress=\"lithostatic\"", "gravity.overburden=2e7"});
+  const Sample s = sample();
+  Model complete = build_model(stressed);
+  Vector u(complete.dofs().dof_count());
+  for (Eigen::Index k = 0; k < u.size(); ++k) u[k] = 1e-3 * std::sin(static_cast<double>(k + 1));
+  for (const auto& [model, field] :
+       {std::pair<const Model*, const Vector*>{&s.model, &s.u}, {&complete, &u}}) {
+    REQUIRE(!model->lattice.face_pieces.empty());
+    // Every 37th node and every face node, listed twice and out of order.
+    std::vector<std::int64_t> nodes;
+    for (std::int64_t n = model->lattice.node_count() - 1; n >= 0; n -= 37) nodes.push_back(n);
+    for (const FacePiece& piece : model->lattice.face_pieces) nodes.push_back(piece.node);
+    nodes.push_back(nodes.front());
+    for (int threads : {1, 3}) {
+      const ThreadCount count(threads);
+      const std::vector<double> all = node_stresses(*model, *field);
+      const std::vector<double> some = node_stresses_at(*model, *field, nodes);
+      REQUIRE(some.size() == all.size());
+      std::vector<bool> listed(model->lattice.node_count(), false);
+      for (const std::int64_t n : nodes) listed[n] = true;
+      for (std::int64_t n = 0; n < model->lattice.node_count(); ++n)
+        for (int k = 0; k < 6; ++k) {
+          if (listed[n]) {
+            REQUIRE(some[6 * n + k] == all[6 * n + k]);
+          } else {
+            REQUIRE(std::isnan(some[6 * n + k]));
+          }
+        }
+    }
+  }
 }
 
 TEST_CASE("an event-driven run breaks the same bonds at the same lambdas on 1 and 2 threads",

@@ -76,7 +76,15 @@ void FailureEvaluator::evaluate(const Model& model, const Vector& displacement,
 std::vector<CriticalBond> FailureEvaluator::indices_of(const Model& model, const Vector& displacement,
                                                        const std::vector<std::int64_t>& bonds) const {
   std::vector<double> node_stress;
-  if (uses_tensor_) node_stress = node_stresses(model, displacement);
+  if (uses_tensor_) {
+    // Only the listed bonds' ends are read.
+    std::vector<std::int64_t> ends;
+    for (const std::int64_t b : bonds)
+      ends.insert(ends.end(), {model.lattice.bonds[b].i, model.lattice.bonds[b].j});
+    std::sort(ends.begin(), ends.end());
+    ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+    node_stress = node_stresses_at(model, displacement, ends);
+  }
   std::vector<CriticalBond> out;
   out.reserve(bonds.size());
   for (std::int64_t b : bonds) {

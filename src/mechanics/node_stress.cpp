@@ -2,8 +2,11 @@
 // random ones.
 #include "latfrac/mechanics/node_stress.h"
 
+#include <algorithm>
 #include <initializer_list>
+#include <limits>
 
+#include "latfrac/base/error.h"
 #include "latfrac/base/threads.h"
 
 namespace latfrac {
@@ -20,54 +23,67 @@ void add_dyad(bool plane, Mat3& to, const Vec3& arm, const Vec3& t) {
   to(2, 2) += arm.z() * t.z();
 }
 
-// The supports' forces on a random lattice's face nodes, each at its face piece: a held
-// component's force is what balances the node's intact bonds (`bond_force`, their force
-// on the node) and, with the loads, its weight. It goes to the piece whose normal is that
-// axis, or else (a base held along x under a basal discontinuity) to the node's first.
-void add_support_dyads(const Model& model, const std::vector<Vec3>& bond_force, bool with_loads,
-                       std::vector<Mat3>& sum) {
+// The supports' forces on a random lattice's face node `node`, whose pieces are
+// pieces[first, last): a held component's force is what balances the node's intact bonds
+// (`bond_force`, their force on the node) and, with the loads, its weight. It goes to the
+// piece whose normal is that axis, or else (a base held along x under a basal
+// discontinuity) to the node's first. Then the overburden's pressure on its top face
+// pieces, at their centroids (a held z is a support's, counted before).
+void add_node_support_dyads(const Model& model, std::size_t first, std::size_t last,
+                            const Vec3& bond_force, bool with_loads, Mat3& sum) {
   const Lattice& lattice = model.lattice;
   const int dim = lattice.dim;
   const std::vector<int> axes = lattice.axes();
   const auto& pieces = lattice.face_pieces;
-  for (std::size_t first = 0; first < pieces.size();) {
-    const std::int64_t node = pieces[first].node;
-    std::size_t last = first;
-    while (last < pieces.size() && pieces[last].node == node) ++last;
-    for (int c = 0; c < dim; ++c) {
-      const std::int64_t dof = node * dim + c;
-      if (model.dofs().free_index[dof] >= 0) continue;
-      const int axis = axes[c];
-      double support = -bond_force[node][axis];
-      if (with_loads) support -= model.external_force[dof];
-      const FacePiece* piece = &pieces[first];
-      for (std::size_t k = first; k < last; ++k)
-        if (pieces[k].axis == axis) piece = &pieces[k];
-      add_dyad(dim == 2, sum[node], piece->arm, support * Vec3::Unit(axis));
-    }
-    first = last;
+  const std::int64_t node = pieces[first].node;
+  for (int c = 0; c < dim; ++c) {
+    const std::int64_t dof = node * dim + c;
+    if (model.dofs().free_index[dof] >= 0) continue;
+    const int axis = axes[c];
+    double support = -bond_force[axis];
+    if (with_loads) support -= model.external_force[dof];
+    const FacePiece* piece = &pieces[first];
+    for (std::size_t k = first; k < last; ++k)
+      if (pieces[k].axis == axis) piece = &pieces[k];
+    add_dyad(dim == 2, sum, piece->arm, support * Vec3::Unit(axis));
   }
-  // The overburden's pressure on the top face pieces, at their centroids (a held z is a
-  // support's, counted above).
   if (!with_loads || model.top_pressure == 0) return;
-  for (const FacePiece& piece : pieces) {
-    if (!lattice.on_top(piece)) continue;
-    if (model.dofs().free_index[piece.node * dim + (dim - 1)] < 0) continue;
-    add_dyad(dim == 2, sum[piece.node], piece.arm,
-             -model.top_pressure * piece.area * Vec3::UnitZ());
+  if (model.dofs().free_index[node * dim + (dim - 1)] < 0) return;
+  for (std::size_t k = first; k < last; ++k)
+    if (lattice.on_top(pieces[k]))
+      add_dyad(dim == 2, sum, pieces[k].arm, -model.top_pressure * pieces[k].area * Vec3::UnitZ());
+}
+
+// The end of node `first`'s run of face pieces (they are in node order).
+std::size_t pieces_end(const std::vector<FacePiece>& pieces, std::size_t first) {
+  std::size_t last = first;
+  while (last < pieces.size() && pieces[last].node == pieces[first].node) ++last;
+  return last;
+}
+
+// The supports' dyads of every face node (add_node_support_dyads).
+void add_support_dyads(const Model& model, const std::vector<Vec3>& bond_force, bool with_loads,
+                       std::vector<Mat3>& sum) {
+  const auto& pieces = model.lattice.face_pieces;
+  for (std::size_t first = 0; first < pieces.size();) {
+    const std::size_t last = pieces_end(pieces, first);
+    const std::int64_t node = pieces[first].node;
+    add_node_support_dyads(model, first, last, bond_force[node], with_loads, sum[node]);
+    first = last;
   }
 }
 
 // What a sweep over the bonds sums for one displacement field: per node, the sum over
 // its intact bonds of arm (x) force, and on a random lattice with face pieces each node's
 // force from its intact bonds (for the supports). A rate (`state` false) reads u_j - u_i
-// alone: the bonds' prestretch is part of the state.
+// alone: the bonds' prestretch is part of the state. The sums are filled by the sweep
+// (every node's, zero where it has no intact bond).
 struct DyadSums {
   DyadSums(const Model& model, const Vector& u, bool state_field, bool with_force)
       : displacement(u),
         state(state_field),
-        sum(model.lattice.node_count(), Mat3::Zero()),
-        bond_force(with_force ? model.lattice.node_count() : 0, Vec3::Zero()) {}
+        sum(model.lattice.node_count()),
+        bond_force(with_force ? model.lattice.node_count() : 0) {}
   const Vector& displacement;
   bool state;
   std::vector<Mat3> sum;
@@ -82,70 +98,127 @@ Vec3 arm_at(const Lattice& lattice, std::int64_t b, std::int64_t n, bool end_j) 
   return end_j ? Vec3(lattice.positions[n] - centroid) : Vec3(centroid - lattice.positions[n]);
 }
 
-// Adds a bond's tension t at its end n to a field's sums.
-void add_at_end(bool plane, DyadSums& field, std::int64_t n, const Vec3& arm, const Vec3& t,
-                bool end_j) {
-  add_dyad(plane, field.sum[n], arm, t);
-  if (field.bond_force.empty()) return;
+// Adds a bond's tension t at one of its ends to that node's sums.
+void add_at_end(bool plane, Mat3& sum, Vec3* force, const Vec3& arm, const Vec3& t, bool end_j) {
+  add_dyad(plane, sum, arm, t);
+  if (!force) return;
   if (end_j) {
-    field.bond_force[n] -= t;
+    *force -= t;
   } else {
-    field.bond_force[n] += t;
+    *force += t;
   }
 }
 
-Vec3 tension_of(const Model& model, std::int64_t b, const DyadSums& field) {
-  const Vec3 du = field.state ? model.bond_displacement(field.displacement, b)
-                              : model.relative_motion(field.displacement, b);
+Vec3 tension_of(const Model& model, std::int64_t b, const Vector& displacement, bool state) {
+  const Vec3 du =
+      state ? model.bond_displacement(displacement, b) : model.relative_motion(displacement, b);
   return model.bond_law().tension(model.springs(b), PairState::intact, du);
 }
 
-// Sums the dyads of every intact bond into each field. In 2-D only the x-z block is
-// summed: the y row and column stay zero. On one thread: one loop over the bonds, each
-// added to its two ends. On more: the bonds' tensions (each bond on its own), then each
-// node's sum over its bonds in bond order (Model::node_bonds), which adds the same terms
-// in the same order: the same numbers on any number of threads.
+// One node's sums over its intact bonds in bond order, the tension of bond b for field f
+// given by tension(f, b). The same terms in the same order as a loop over all bonds that
+// adds each bond to its two ends, so the same numbers.
+template <class Tension>
+void node_sums(const Model& model, const NodeBonds& index, std::int64_t n, std::size_t fields,
+               Mat3* sum, Vec3* force, const Tension& tension) {
+  const Lattice& lattice = model.lattice;
+  const bool plane = lattice.dim == 2;
+  for (std::size_t f = 0; f < fields; ++f) {
+    sum[f].setZero();
+    if (force) force[f].setZero();
+  }
+  for (std::int64_t k = index.start[n]; k < index.start[n + 1]; ++k) {
+    const std::int64_t b = index.entries[k] / 2;
+    if (!model.intact(b)) continue;
+    const bool end_j = index.entries[k] % 2 == 1;
+    const Vec3 arm = arm_at(lattice, b, n, end_j);
+    for (std::size_t f = 0; f < fields; ++f)
+      add_at_end(plane, sum[f], force ? &force[f] : nullptr, arm, tension(f, b), end_j);
+  }
+}
+
+// Sums the dyads of every intact bond into each field (at most two). In 2-D only the
+// x-z block is summed: the y row and column stay zero. On one thread: one loop over the
+// bonds, each added to its two ends. On more: the bonds' tensions (each bond on its own),
+// then each node's sum over its bonds in bond order (node_sums): the same numbers on any
+// number of threads.
 void sum_dyads(const Model& model, std::initializer_list<DyadSums*> fields) {
   const Lattice& lattice = model.lattice;
   const bool plane = lattice.dim == 2;
   const std::int64_t bonds = lattice.bond_count();
+  const std::vector<DyadSums*> field(fields);
+  const std::size_t count = field.size();
+  if (count > 2) throw Error("sum_dyads: at most two fields");
   if (threads::used(lattice.node_count(), threads::node_grain) == 1) {
+    for (DyadSums* f : field) {
+      std::fill(f->sum.begin(), f->sum.end(), Mat3::Zero());
+      std::fill(f->bond_force.begin(), f->bond_force.end(), Vec3::Zero());
+    }
     for (std::int64_t b = 0; b < bonds; ++b) {
       if (!model.intact(b)) continue;
       const Bond& bond = lattice.bonds[b];
       const Vec3 arm_i = arm_at(lattice, b, bond.i, false),
                  arm_j = arm_at(lattice, b, bond.j, true);
-      for (DyadSums* field : fields) {
-        const Vec3 t = tension_of(model, b, *field);
-        add_at_end(plane, *field, bond.i, arm_i, t, false);
-        add_at_end(plane, *field, bond.j, arm_j, t, true);
+      for (DyadSums* f : field) {
+        const Vec3 t = tension_of(model, b, f->displacement, f->state);
+        const bool forces = !f->bond_force.empty();
+        add_at_end(plane, f->sum[bond.i], forces ? &f->bond_force[bond.i] : nullptr, arm_i, t,
+                   false);
+        add_at_end(plane, f->sum[bond.j], forces ? &f->bond_force[bond.j] : nullptr, arm_j, t,
+                   true);
       }
     }
     return;
   }
-  std::vector<std::vector<Vec3>> tension(fields.size(), std::vector<Vec3>(bonds));
+  std::vector<std::vector<Vec3>> tension(count, std::vector<Vec3>(bonds));
   threads::for_blocks(bonds, threads::bond_grain, [&](std::int64_t first, std::int64_t last) {
     for (std::int64_t b = first; b < last; ++b) {
       if (!model.intact(b)) continue;
-      std::size_t f = 0;
-      for (const DyadSums* field : fields) tension[f++][b] = tension_of(model, b, *field);
+      for (std::size_t f = 0; f < count; ++f)
+        tension[f][b] = tension_of(model, b, field[f]->displacement, field[f]->state);
     }
   });
   const NodeBonds& index = model.node_bonds();
-  threads::for_blocks(lattice.node_count(), threads::node_grain,
-                      [&](std::int64_t first, std::int64_t last) {
-                        for (std::int64_t n = first; n < last; ++n) {
-                          for (std::int64_t k = index.start[n]; k < index.start[n + 1]; ++k) {
-                            const std::int64_t b = index.entries[k] / 2;
-                            if (!model.intact(b)) continue;
-                            const bool end_j = index.entries[k] % 2 == 1;
-                            const Vec3 arm = arm_at(lattice, b, n, end_j);
-                            std::size_t f = 0;
-                            for (DyadSums* field : fields)
-                              add_at_end(plane, *field, n, arm, tension[f++][b], end_j);
-                          }
-                        }
-                      });
+  const bool forces = !field[0]->bond_force.empty();
+  threads::for_blocks(
+      lattice.node_count(), threads::node_grain, [&](std::int64_t first, std::int64_t last) {
+        Mat3 sum[2];
+        Vec3 force[2];
+        for (std::int64_t n = first; n < last; ++n) {
+          node_sums(model, index, n, count, sum, forces ? force : nullptr,
+                    [&](std::size_t f, std::int64_t b) -> const Vec3& { return tension[f][b]; });
+          for (std::size_t f = 0; f < count; ++f) {
+            field[f]->sum[n] = sum[f];
+            if (forces) field[f]->bond_force[n] = force[f];
+          }
+        }
+      });
+}
+
+// Node n's Voigt stress from its sum of dyads.
+void voigt_of(const Model& model, std::int64_t n, const Mat3& sum, bool with_loads, double* v) {
+  const Lattice& lattice = model.lattice;
+  const double scale = 1.0 / (2 * lattice.node_volume);
+  const double weight = lattice.is_random() ? 1.0 / lattice.node_volumes[n] : scale;
+  const Mat3 s = 0.5 * weight * (sum + sum.transpose());
+  v[0] = s(0, 0);
+  v[2] = s(2, 2);
+  if (lattice.dim == 2) {
+    // Plane strain: sigma_yy = nu (sigma_xx + sigma_zz) for what the lattice added; an
+    // initial stress sigma0_v diag(K, K, 1) has its sigma_yy = K sigma0_v in full, so it
+    // adds (K - nu (1 + K)) sigma0_v (K = 1: (1 - 2 nu) sigma0).
+    const double nu = model.node_poisson[n];
+    v[1] = nu * (s(0, 0) + s(2, 2));
+    if (with_loads && model.has_prestress()) {
+      const double k = model.initial_stress_ratio;
+      v[1] += (k - nu * (1 + k)) * model.node_initial_stress[n];
+    }
+  } else {
+    v[1] = s(1, 1);
+  }
+  v[3] = s(1, 2);
+  v[4] = s(0, 2);
+  v[5] = s(0, 1);
 }
 
 // The Voigt stresses from one field's sums.
@@ -153,32 +226,9 @@ std::vector<double> voigt_stresses(const Model& model, DyadSums& field, bool wit
   const Lattice& lattice = model.lattice;
   if (!lattice.face_pieces.empty())
     add_support_dyads(model, field.bond_force, with_loads, field.sum);
-  const std::vector<Mat3>& sum = field.sum;
   std::vector<double> voigt(lattice.node_count() * 6);
-  const double scale = 1.0 / (2 * lattice.node_volume);
-  for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
-    const double weight = lattice.is_random() ? 1.0 / lattice.node_volumes[n] : scale;
-    const Mat3 s = 0.5 * weight * (sum[n] + sum[n].transpose());
-    double* v = &voigt[n * 6];
-    v[0] = s(0, 0);
-    v[2] = s(2, 2);
-    if (lattice.dim == 2) {
-      // Plane strain: sigma_yy = nu (sigma_xx + sigma_zz) for what the lattice added; an
-      // initial stress sigma0_v diag(K, K, 1) has its sigma_yy = K sigma0_v in full, so it
-      // adds (K - nu (1 + K)) sigma0_v (K = 1: (1 - 2 nu) sigma0).
-      const double nu = model.node_poisson[n];
-      v[1] = nu * (s(0, 0) + s(2, 2));
-      if (with_loads && model.has_prestress()) {
-        const double k = model.initial_stress_ratio;
-        v[1] += (k - nu * (1 + k)) * model.node_initial_stress[n];
-      }
-    } else {
-      v[1] = s(1, 1);
-    }
-    v[3] = s(1, 2);
-    v[4] = s(0, 2);
-    v[5] = s(0, 1);
-  }
+  for (std::int64_t n = 0; n < lattice.node_count(); ++n)
+    voigt_of(model, n, field.sum[n], with_loads, &voigt[n * 6]);
   return voigt;
 }
 
@@ -192,6 +242,29 @@ std::vector<double> stresses(const Model& model, const Vector& displacement, boo
 
 std::vector<double> node_stresses(const Model& model, const Vector& displacement) {
   return stresses(model, displacement, true);
+}
+
+std::vector<double> node_stresses_at(const Model& model, const Vector& displacement,
+                                     const std::vector<std::int64_t>& nodes) {
+  const Lattice& lattice = model.lattice;
+  std::vector<double> voigt(lattice.node_count() * 6, std::numeric_limits<double>::quiet_NaN());
+  const NodeBonds& index = model.node_bonds();
+  const auto& pieces = lattice.face_pieces;
+  for (const std::int64_t n : nodes) {
+    Mat3 sum;
+    Vec3 force;
+    node_sums(
+        model, index, n, 1, &sum, pieces.empty() ? nullptr : &force,
+        [&](std::size_t, std::int64_t b) { return tension_of(model, b, displacement, true); });
+    const auto first = static_cast<std::size_t>(
+        std::lower_bound(pieces.begin(), pieces.end(), n,
+                         [](const FacePiece& p, std::int64_t node) { return p.node < node; }) -
+        pieces.begin());
+    if (first < pieces.size() && pieces[first].node == n)
+      add_node_support_dyads(model, first, pieces_end(pieces, first), force, true, sum);
+    voigt_of(model, n, sum, true, &voigt[n * 6]);
+  }
+  return voigt;
 }
 
 std::vector<double> node_stress_rates(const Model& model, const Vector& direction) {

@@ -21,6 +21,7 @@
 // In 2-D plane strain the out-of-plane stress is sigma_yy = nu (sigma_xx + sigma_zz).
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "latfrac/mechanics/model.h"
@@ -29,6 +30,11 @@ namespace latfrac {
 
 // Voigt order per node: xx, yy, zz, yz, xz, xy (Pa), N x 6 row-major.
 std::vector<double> node_stresses(const Model& model, const Vector& displacement);
+// node_stresses at the listed nodes only, the same numbers bit for bit; the other
+// nodes' entries are NaN. For a few bonds' criterion: a sum over those nodes' bonds
+// instead of a sweep over every bond.
+std::vector<double> node_stresses_at(const Model& model, const Vector& displacement,
+                                     const std::vector<std::int64_t>& nodes);
 // The part linear in the displacement: the stresses' change along a path's direction
 // (without the loads the supports' forces balance in node_stresses).
 std::vector<double> node_stress_rates(const Model& model, const Vector& direction);
