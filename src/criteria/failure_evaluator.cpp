@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "latfrac/base/phase_times.h"
 #include "latfrac/base/threads.h"
 #include "latfrac/mechanics/node_stress.h"
 
@@ -60,6 +61,7 @@ FailureIndex FailureEvaluator::bond_index(const Model& model, const Vector& disp
 
 void FailureEvaluator::evaluate(const Model& model, const Vector& displacement,
                                 std::vector<double>& index, std::vector<BreakMode>& mode) const {
+  const ScopedPhase phase(Phase::criterion);
   const std::int64_t bonds = model.lattice.bond_count();
   index.assign(bonds, 0.0);
   mode.assign(bonds, BreakMode::tensile);
@@ -75,6 +77,7 @@ void FailureEvaluator::evaluate(const Model& model, const Vector& displacement,
 
 std::vector<CriticalBond> FailureEvaluator::indices_of(const Model& model, const Vector& displacement,
                                                        const std::vector<std::int64_t>& bonds) const {
+  const ScopedPhase phase(Phase::criterion);
   std::vector<double> node_stress;
   if (uses_tensor_) {
     // Only the listed bonds' ends are read.
@@ -132,6 +135,7 @@ CriticalBond FailureEvaluator::most_critical(const Model& model, const Vector& d
 std::vector<CriticalBond> FailureEvaluator::critical_group(const Model& model,
                                                            const Vector& displacement,
                                                            double threshold) const {
+  const ScopedPhase phase(Phase::criterion);
   std::vector<double> node_stress;
   if (uses_tensor_) node_stress = node_stresses(model, displacement);
   const double tolerance = rank_tolerance();
@@ -193,6 +197,7 @@ bool may_reach_one(const FailureCriterion& criterion, const AffineBondStress& s,
 }  // namespace
 
 bool FailureEvaluator::may_fail_at(const Model& model, const PathStresses& path, double s) const {
+  const ScopedPhase phase(Phase::criterion);
   // On the strain reading the exact check needs no node stresses: nothing to save.
   if (!uses_tensor_) return true;
   // The node stresses at s, then each bond's f from them as the exact check computes it.

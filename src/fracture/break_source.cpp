@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "latfrac/base/parallel.h"
+#include "latfrac/base/phase_times.h"
 #include "latfrac/base/threads.h"
 
 namespace latfrac {
@@ -40,6 +41,7 @@ const PathStresses& PathStressCache::current(double lambda, double sign) {
 
 PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
                         const PathStresses& stresses, double from, double to) {
+  const ScopedPhase phase(Phase::criterion);
   const double sign = to < from ? -1.0 : 1.0;  // search in s = sign * lambda, increasing
   const double s_from = sign * from, s_to = sign * to;
   const parallel::Range mine = parallel::share(model.lattice.bond_count());

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "latfrac/base/error.h"
+#include "latfrac/base/phase_times.h"
 
 namespace latfrac {
 
@@ -137,6 +138,7 @@ void EquilibriumState::hold(const std::vector<FragmentDetector::LoosePart>& part
 }
 
 void EquilibriumState::commit_at(const Vector& displacement) {
+  const ScopedPhase phase(Phase::contacts);
   if (!model_.has_friction()) return;
   const InteractionLaw& law = *model_.contact_law();
   for (std::int64_t b = 0; b < model_.lattice.bond_count(); ++b) {

@@ -6,6 +6,7 @@
 
 #include "latfrac/base/error.h"
 #include "latfrac/base/parallel.h"
+#include "latfrac/base/phase_times.h"
 #include "latfrac/base/stop_signal.h"
 #include "latfrac/fracture/break_source.h"
 #include "latfrac/fracture/event_loop.h"
@@ -148,6 +149,7 @@ void FractureRun::finish() {
 }
 
 void FractureRun::take_snapshot(double lambda) {
+  const ScopedPhase phase(Phase::output);
   result_.snapshots.push_back(
       make_snapshot(model_, equilibrium_.displacement(lambda), lambda, &evaluator_));
 }
@@ -267,6 +269,7 @@ bool RankedControl::checkpoint_due() {
 }
 
 void RankedControl::save(RunResult& result, RunCheckpoint& checkpoint) {
+  const ScopedPhase phase(Phase::output);
   if (writer_) writer_->save(result, checkpoint);
 }
 

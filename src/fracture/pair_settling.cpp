@@ -1,6 +1,8 @@
 // The active-set iteration over switching pairs at one lambda, with its cycle rule.
 #include "latfrac/fracture/pair_settling.h"
 
+#include "latfrac/base/phase_times.h"
+
 namespace latfrac {
 
 std::string closed_pairs(const Model& model) {
@@ -13,6 +15,7 @@ std::string closed_pairs(const Model& model) {
 }
 
 void PairSettling::settle(double lambda) {
+  const ScopedPhase phase(Phase::contacts);
   const Model& model = equilibrium_.model();
   if (!model.has_contact()) return;
   std::set<std::string> visited;

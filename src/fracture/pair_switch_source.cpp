@@ -1,11 +1,13 @@
 // The next contact switch on an affine path, and taking it.
 #include "latfrac/fracture/pair_switch_source.h"
 
+#include "latfrac/base/phase_times.h"
 
 namespace latfrac {
 
 // The first switch after `from`, lowest bond id on ties.
 double PairSwitchSource::propose(const AffinePath& path, double from, double to) {
+  const ScopedPhase phase(Phase::contacts);
   const Model& model = equilibrium_.model();
   proposed_.bond = -1;
   if (!model.has_contact()) return none;

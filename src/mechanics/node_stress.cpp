@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "latfrac/base/error.h"
+#include "latfrac/base/phase_times.h"
 #include "latfrac/base/threads.h"
 
 namespace latfrac {
@@ -241,11 +242,13 @@ std::vector<double> stresses(const Model& model, const Vector& displacement, boo
 }  // namespace
 
 std::vector<double> node_stresses(const Model& model, const Vector& displacement) {
+  const ScopedPhase phase(Phase::node_stress);
   return stresses(model, displacement, true);
 }
 
 std::vector<double> node_stresses_at(const Model& model, const Vector& displacement,
                                      const std::vector<std::int64_t>& nodes) {
+  const ScopedPhase phase(Phase::node_stress);
   const Lattice& lattice = model.lattice;
   std::vector<double> voigt(lattice.node_count() * 6, std::numeric_limits<double>::quiet_NaN());
   const NodeBonds& index = model.node_bonds();
@@ -268,10 +271,12 @@ std::vector<double> node_stresses_at(const Model& model, const Vector& displacem
 }
 
 std::vector<double> node_stress_rates(const Model& model, const Vector& direction) {
+  const ScopedPhase phase(Phase::node_stress);
   return stresses(model, direction, false);
 }
 
 NodeStressPath node_stress_path(const Model& model, const Vector& at_zero, const Vector& per_unit) {
+  const ScopedPhase phase(Phase::node_stress);
   // One sweep for both fields: each field's sums take the same terms in the same order as
   // a sweep of its own, so the numbers are node_stresses' and node_stress_rates' exactly.
   const bool supports = !model.lattice.face_pieces.empty();

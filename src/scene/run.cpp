@@ -7,15 +7,17 @@
 #include <cmath>
 #include <ctime>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
+#include "latfrac/base/error.h"
+#include "latfrac/base/phase_times.h"
+#include "latfrac/base/progress.h"
 #include "latfrac/fracture/fracture_run.h"
+#include "latfrac/fracture/initial_supports.h"
+#include "latfrac/fracture/snapshots.h"
 #include "latfrac/scene/model_builder.h"
 #include "latfrac/solvers/equilibrium.h"
-#include "latfrac/base/error.h"
-#include "latfrac/fracture/initial_supports.h"
-#include "latfrac/base/progress.h"
-#include "latfrac/fracture/snapshots.h"
 
 namespace latfrac {
 
@@ -151,6 +153,8 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     check_step_count(scene.loading.total, scene.stepping.increment,
                      (scene.source_path.empty() ? "" : scene.source_path + ": ") + "stepping.increment");
   const auto start = std::chrono::steady_clock::now();
+  phase_clock().reset();
+  std::optional<ScopedPhase> setup(std::in_place, Phase::setup);
   // A checkpoint written before the run began is continued by starting afresh.
   const ResumePoint* resume =
       options.resume && options.resume->checkpoint.started ? options.resume : nullptr;
@@ -199,6 +203,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     solver.rebuild(resume->checkpoint.factor, states);
   }
   ProgressLine progress(options.progress);
+  setup.reset();
 
   if (criterion) {
     FractureRun fracture(model, criterion, scene.strength->bond_stress, schedule_of(scene),
@@ -210,6 +215,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     } catch (const RunStopped&) {
       if (options.backend_statistics) *options.backend_statistics = solver.factor().statistics();
       progress.finish();
+      result.summary.phase_seconds = phase_clock().seconds();
       result.summary.wall_seconds =
           wall_before +
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -227,6 +233,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
 
   result.summary.final_lambda = scene.loading.total;
   result.summary.complete = true;
+  result.summary.phase_seconds = phase_clock().seconds();
   result.summary.wall_seconds =
       wall_before + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
@@ -240,15 +247,34 @@ std::string format_number(double value) {
 }
 }  // namespace
 
+// "  time by part (this process, s): solves 41.2, ..." in Phase order, the parts with
+// any time; empty when the split was not measured.
+std::string time_split_text(const RunSummary& s) {
+  std::ostringstream text;
+  text << std::setprecision(3);
+  bool any = false;
+  for (int p = 1; p <= phase_count; ++p) {
+    const int phase = p % phase_count;  // `the rest` last
+    if (!(s.phase_seconds[phase] > 0)) continue;
+    text << (any ? ", " : "  time by part (this process, s): ")
+         << to_string(static_cast<Phase>(phase)) << " " << s.phase_seconds[phase];
+    any = true;
+  }
+  if (any) text << "\n";
+  return text.str();
+}
+
 std::string summary_text(const RunResult& result) {
   std::ostringstream text;
   const RunSummary& s = result.summary;
   text << "summary of " << result.scene.name << " (" << result.scene.dim << "-D, spacing "
        << result.scene.spacing << " m, "
        << (result.scene.criterion.empty() ? "elastic" : result.scene.criterion) << ")\n"
-       << (result.scene.model.empty() ? "" : "  model: " + result.scene.model + "\n")
-       << "  nodes " << result.node_count() << ", bonds " << result.bond_count() << "\n"
-       << (s.complete ? "" : "  incomplete: written during the run, or the run stopped (latfrac run --resume continues it)\n")
+       << (result.scene.model.empty() ? "" : "  model: " + result.scene.model + "\n") << "  nodes "
+       << result.node_count() << ", bonds " << result.bond_count() << "\n"
+       << (s.complete ? ""
+                      : "  incomplete: written during the run, or the run stopped (latfrac run "
+                        "--resume continues it)\n")
        << "  final lambda " << s.final_lambda << ", bonds broken " << s.breaks << ", events "
        << result.events.size() << "\n"
        << "  parts held for lack of support " << result.fragments.size()
@@ -264,7 +290,8 @@ std::string summary_text(const RunResult& result) {
                      (result.scene.dim == 2 ? " J per metre\n" : " J\n"))
        << "  solves " << s.solves << ", factorizations " << s.factorizations << ", factor updates "
        << s.factor_updates << "\n"
-       << "  wall time " << s.wall_seconds << " s\n";
+       << "  wall time " << s.wall_seconds << " s\n"
+       << time_split_text(s);
   for (const Snapshot& snapshot : result.snapshots) {
     double max_u = 0, min_zz = 0, max_zz = 0;
     for (std::size_t n = 0; n < result.node_count(); ++n) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "latfrac/base/error.h"
+#include "latfrac/base/phase_times.h"
 #include "latfrac/solvers/equilibrium.h"
 #include "unsymmetric.h"
 
@@ -24,6 +25,7 @@ std::vector<std::int64_t> EquilibriumSolver::slipping_pairs() const {
 }
 
 void EquilibriumSolver::solve_coupled(double* rhs, std::int64_t n, int columns) {
+  const ScopedPhase phase(Phase::solve);
   ++counters_.solves;
   if (n == 0) return;
   const std::vector<std::int64_t> slipping = slipping_pairs();
@@ -333,6 +335,7 @@ void EquilibriumSolver::unsymmetric_solve(const std::vector<std::int64_t>& slipp
 // History replays it).
 void EquilibriumSolver::factorize_unsymmetric(const std::vector<std::int64_t>& slipping,
                                               std::int64_t n) {
+  const ScopedPhase phase(Phase::refactorize);
   if (!unsymmetric_) unsymmetric_ = std::make_unique<Unsymmetric>();
   Unsymmetric& lu = *unsymmetric_;
   lu_changes_.clear();

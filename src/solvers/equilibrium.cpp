@@ -13,6 +13,7 @@
 #include <string>
 
 #include "latfrac/base/error.h"
+#include "latfrac/base/phase_times.h"
 #include "latfrac/solvers/cholesky.h"
 #include "unsymmetric.h"
 
@@ -67,6 +68,7 @@ double EquilibriumSolver::load_scale(double lambda) {
 }
 
 void EquilibriumSolver::refactorize(const Vector& free_displacement, double lambda) {
+  const ScopedPhase phase(Phase::refactorize);
   if (model_.dofs().free_count == 0) {
     factor_current_ = true;
     return;
@@ -142,6 +144,7 @@ EquilibriumSolver::History EquilibriumSolver::history() const {
 }
 
 void EquilibriumSolver::rebuild(const History& history, const std::vector<PairState>& states) {
+  const ScopedPhase phase(Phase::setup);
   if (static_cast<std::int64_t>(history.elimination_order.size()) == model_.dofs().free_count &&
       model_.dofs().free_count > 0) {
     analyse(history.elimination_order);
@@ -267,6 +270,7 @@ void EquilibriumSolver::rebuild_lu(const History& history) {
 
 void EquilibriumSolver::update_factor(std::int64_t bond, const std::vector<RankOneTerm>& terms,
                                       bool downdate) {
+  const ScopedPhase phase(Phase::factor_update);
   // Only a bond with a prescribed dof loads the free dofs at zero free displacement.
   if (on_boundary_[bond]) loads_current_ = false;
   if (!factor_current_) return;  // the next factorization assembles the new stiffness
@@ -421,6 +425,7 @@ void EquilibriumSolver::hold(const std::vector<Hold>& holds, const Vector& displ
 // Without load (no gravity at lambda = 0) the solution is 0 and any finite result passes;
 // a NaN from a singular factor must not.
 double EquilibriumSolver::relative_residual(const Vector& free_displacement, double lambda) {
+  const ScopedPhase phase(Phase::residual);
   const double load = load_scale(lambda);
   const double residual = max_abs(model_.residual(free_displacement, lambda));
   if (load == 0) return std::isfinite(residual) ? 0 : residual;
@@ -591,6 +596,7 @@ AffinePath EquilibriumSolver::checked_affine_path(double lambda) {
 }
 
 Vector EquilibriumSolver::checked_solve(double lambda) {
+  const ScopedPhase phase(Phase::solve);
   const std::int64_t n = model_.dofs().free_count;
   if (last_solution_valid_ && factor_current_ && lambda == last_lambda_ && n > 0) {
     Vector correction(n);
@@ -683,6 +689,7 @@ void EquilibriumSolver::find_boundary_bonds() {
 }
 
 AffinePath EquilibriumSolver::affine_path() {
+  const ScopedPhase phase(Phase::solve);
   if (!model_.is_linear()) throw Error("affine_path: the bond law is not linear");
   const std::int64_t n = model_.dofs().free_count;
   if (!factor_current_) refactorize(Vector::Zero(n), 0.0);

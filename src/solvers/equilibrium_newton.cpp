@@ -10,10 +10,11 @@
 #include <sstream>
 #include <string>
 
-#include "latfrac/solvers/equilibrium.h"
-#include "unsymmetric.h"
 #include "latfrac/base/error.h"
+#include "latfrac/base/phase_times.h"
+#include "latfrac/solvers/equilibrium.h"
 #include "sundials_checks.h"
+#include "unsymmetric.h"
 
 namespace latfrac {
 namespace {
@@ -152,6 +153,7 @@ void EquilibriumSolver::reset_kinsol() {
 }
 
 EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacement) {
+  const ScopedPhase phase(Phase::solve);
   EquilibriumReport report;
   const double load = load_scale(lambda);
   if (load == 0 || model_.dofs().free_count == 0) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "latfrac/base/phase_times.h"
 #include "latfrac/criteria/stress.h"
 
 namespace latfrac {
@@ -78,6 +79,9 @@ struct RunSummary : RunCounters {
   double friction_work = 0;
   double wall_seconds = 0;
   bool complete = true;  // false while the run is going on, or when it stopped
+  // Where this process's wall time went, s per part (base/phase_times.h): all zero when
+  // not measured (a result read from a file: the split is not stored in it).
+  std::array<double, phase_count> phase_seconds{};
 };
 
 struct RunResult {
