@@ -178,10 +178,26 @@ EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacem
   check_flag(KINSetMaxSetupCalls(k.memory, setup_every), "KINSetMaxSetupCalls");
   const int strategy = model_.is_linear() ? KIN_NONE : KIN_LINESEARCH;
   const int flag = KINSol(k.memory, k.unknowns, strategy, k.unit_scale, k.residual_scale);
+  // Large kinematics: Newton's last iterate at the rounding floor of this system (its
+  // tangent freshly factorized at every iteration), and within max_rounding_excess of the
+  // tolerance, is accepted as the linear route accepts it after a fresh factorization
+  // (fresh_solve_missed): KINSOL stops there with steps too small to go on, or out of
+  // iterations, and no iterate can do better.
+  const auto at_floor = [&](const Vector& u, double residual) {
+    return !model_.is_linear() && residual <= max_rounding_excess * options_.tolerance &&
+           at_rounding_floor(u, lambda);
+  };
   if (flag < 0) {
     std::string message = std::string("KINSol failed (") + flag_name(flag) + ")";
     if (!k.last_message.empty()) message += ": " + k.last_message;
     if (k.singular_unknown >= 0) throw SingularStiffness(message, k.singular_unknown);
+    if (const Vector last = as_vector(k.unknowns);
+        at_floor(last, max_abs(model_.residual(last, lambda)) / load)) {
+      free_displacement = last;
+      report.relative_residual = max_abs(model_.residual(last, lambda)) / load;
+      report.at_rounding_floor = true;
+      return report;
+    }
     // Say where, how far from equilibrium the last iterate was, and what may help: KINSOL's
     // own words name neither the loading nor the settings.
     std::ostringstream where;
@@ -208,7 +224,10 @@ EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacem
                          k.last_unknowns == free_displacement;
   report.relative_residual =
       max_abs(evaluated ? k.last_residual : model_.residual(free_displacement, lambda)) / load;
-  if (report.relative_residual > options_.tolerance) {
+  if (report.relative_residual > options_.tolerance &&
+      at_floor(free_displacement, report.relative_residual)) {
+    report.at_rounding_floor = true;
+  } else if (report.relative_residual > options_.tolerance) {
     std::ostringstream message;
     message << std::scientific << std::setprecision(2)
             << "equilibrium (Newton, KINSOL) not reached at lambda " << lambda

@@ -29,6 +29,8 @@ struct EquilibriumReport {
   long newton_iterations = 0;
   long residual_evaluations = 0;
   double relative_residual = 0;  // max |R| / max |R(0, lambda)|
+  // Above the tolerance but accepted at the rounding floor (large kinematics, Newton).
+  bool at_rounding_floor = false;
 };
 
 // Free displacements along an affine path: u(lambda) = gravity + lambda * extension.
