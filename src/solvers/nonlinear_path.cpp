@@ -12,6 +12,7 @@
 #include <string>
 
 #include "latfrac/base/error.h"
+#include "latfrac/base/phase_times.h"
 #include "sundials_checks.h"
 
 namespace latfrac {
@@ -249,6 +250,7 @@ PathEvent NonlinearPath::refine_event(double from, double to, double lambda,
 }
 
 PathEvent NonlinearPath::advance(double from, double to, Vector& free_displacement) {
+  const ScopedPhase phase(Phase::solve);
   factor_is_tangent_ = false;  // the intact bonds may have changed since the last call
   const CriticalBond start = critical(free_displacement, from);
   if (start.bond >= 0 && start.index >= 1) return {from, start.bond};

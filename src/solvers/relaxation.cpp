@@ -16,6 +16,7 @@
 #include <string>
 
 #include "latfrac/base/error.h"
+#include "latfrac/base/phase_times.h"
 #include "latfrac/base/stop_signal.h"
 
 namespace latfrac {
@@ -284,6 +285,7 @@ RelaxationSolver::RelaxationSolver(const SolverOptions& options)
 
 RelaxationReport RelaxationSolver::solve(const Model& model, double lambda,
                                          Vector& free_displacement) const {
+  const ScopedPhase phase(Phase::solve);
   const std::int64_t free_count = model.dofs().free_count;
   assert(free_displacement.size() == free_count);
   const double load = max_abs(model.residual(Vector::Zero(free_count), lambda));
