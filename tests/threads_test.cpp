@@ -127,9 +127,9 @@ TEST_CASE("threaded sweeps give the serial loop's numbers bit for bit", "[thread
 }
 
 TEST_CASE("node stresses at a few nodes are node_stresses' there, bit for bit", "[threads]") {
-  // The sample (gravity, face pieces on a random lattice, a tenth of the bonds open), and
-  // the complete model's section with a lithostatic start under an overburden (the top
-  // face's pressure and the prestress's out-of-plane term).
+  // The sample (gravity, face pieces on a random lattice, a tenth of the bonds open), the
+  // complete model's section with a lithostatic start under an overburden (the top face's
+  // pressure and the prestress's out-of-plane term), and its 3-D block.
   const Scene stressed = read_problem_file(
       std::string(LATFRAC_PROBLEMS_DIR) + "/graben-complete-2d.toml",
       {"lattice.spacing=2000", "gravity.initial_stress=\"lithostatic\"", "gravity.overburden=2e7"});
@@ -137,8 +137,15 @@ TEST_CASE("node stresses at a few nodes are node_stresses' there, bit for bit", 
   Model complete = build_model(stressed);
   Vector u(complete.dofs().dof_count());
   for (Eigen::Index k = 0; k < u.size(); ++k) u[k] = 1e-3 * std::sin(static_cast<double>(k + 1));
-  for (const auto& [model, field] :
-       {std::pair<const Model*, const Vector*>{&s.model, &s.u}, {&complete, &u}}) {
+  // And the complete model's 3-D block (a random lattice with face pieces on every face).
+  const Scene block = read_problem_file(
+      std::string(LATFRAC_PROBLEMS_DIR) + "/graben-complete-3d.toml", {"output.snapshots=[]"});
+  Model complete_3d = build_model(block);
+  Vector u3(complete_3d.dofs().dof_count());
+  for (Eigen::Index k = 0; k < u3.size(); ++k) u3[k] = 1e-3 * std::cos(static_cast<double>(k + 1));
+  for (const auto& [model, field] : {std::pair<const Model*, const Vector*>{&s.model, &s.u},
+                                     {&complete, &u},
+                                     {&complete_3d, &u3}}) {
     REQUIRE(!model->lattice.face_pieces.empty());
     // Every 37th node and every face node, listed twice and out of order.
     std::vector<std::int64_t> nodes;

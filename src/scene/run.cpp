@@ -203,13 +203,13 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     solver.rebuild(resume->checkpoint.factor, states);
   }
   ProgressLine progress(options.progress);
-  setup.reset();
 
   if (criterion) {
     FractureRun fracture(model, criterion, scene.strength->bond_stress, schedule_of(scene),
                          scene.solver, solver, progress, result);
     fracture.set_control(options.control);
     if (resume) fracture.resume_from(resume->checkpoint, resume->result.summary);
+    setup.reset();
     try {
       fracture.run();
     } catch (const RunStopped&) {
@@ -223,6 +223,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     }
     static_cast<RunCounters&>(result.summary) = fracture.counters();
   } else {
+    setup.reset();
     run_elastic(scene, model, solver, progress, result);
     result.summary.solves = solver.counters().solves;
     result.summary.factorizations = solver.counters().factorizations;

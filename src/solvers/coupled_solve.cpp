@@ -171,22 +171,30 @@ const EquilibriumSolver::FollowedSolves& EquilibriumSolver::followed_solves(
         sctx.row(c) += (cache.pending_sign[static_cast<std::size_t>(c)] * value) * x.row(row);
     x -= z.leftCols(r) * sctx;
   };
-  // W's columns are brought in place (a dropped contact's as well: each column on its own,
-  // so the kept ones are what they would be alone), and W is rebuilt only when its
-  // contacts changed: W is n x k, and each copy of it a pass over memory.
-  if (w_follows) bring(cache.w);
+  // W keeps its storage and is brought in place when its contacts are the same (each
+  // copy of W, n x k, is a pass over memory). Otherwise its kept columns are gathered
+  // first and brought together: a product with other columns beside them could round
+  // them differently (Eigen's kernels take the last rows and columns apart). Invalid until
+  // committed below, so that a throw in between leaves no half-brought W.
   bool same_columns = fresh.empty() && followed && cache.w.cols() == k;
   for (std::size_t c = 0; same_columns && c < slipping.size(); ++c)
     same_columns = kept[c] == static_cast<Eigen::Index>(c);
+  cache.valid = false;
   Eigen::MatrixXd w;
   if (same_columns) {
     w = std::move(cache.w);
+    bring(w);
   } else {
+    std::vector<Eigen::Index> from;
+    for (std::size_t c = 0; c < slipping.size(); ++c)
+      if (kept[c] >= 0) from.push_back(kept[c]);
+    Eigen::MatrixXd moved =
+        followed ? Eigen::MatrixXd(cache.w(Eigen::all, from)) : Eigen::MatrixXd(n, 0);
+    bring(moved);
     w.resize(n, k);
-    for (std::size_t c = 0; c < slipping.size(); ++c) {
-      const auto to = static_cast<Eigen::Index>(c);
-      if (kept[c] >= 0) w.col(to) = cache.w.col(kept[c]);
-    }
+    Eigen::Index next = 0;
+    for (std::size_t c = 0; c < slipping.size(); ++c)
+      if (kept[c] >= 0) w.col(static_cast<Eigen::Index>(c)) = moved.col(next++);
     for (std::size_t i = 0; i < fresh.size(); ++i)
       w.col(fresh[i]) = z.col(first_fresh + static_cast<Eigen::Index>(i));
   }

@@ -187,14 +187,21 @@ EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacem
     return !model_.is_linear() && residual <= max_rounding_excess * options_.tolerance &&
            at_rounding_floor(u, lambda);
   };
+  const auto count_iterations = [&] {
+    check_flag(KINGetNumNonlinSolvIters(k.memory, &report.newton_iterations),
+               "KINGetNumNonlinSolvIters");
+    check_flag(KINGetNumFuncEvals(k.memory, &report.residual_evaluations), "KINGetNumFuncEvals");
+  };
   if (flag < 0) {
     std::string message = std::string("KINSol failed (") + flag_name(flag) + ")";
     if (!k.last_message.empty()) message += ": " + k.last_message;
     if (k.singular_unknown >= 0) throw SingularStiffness(message, k.singular_unknown);
-    if (const Vector last = as_vector(k.unknowns);
-        at_floor(last, max_abs(model_.residual(last, lambda)) / load)) {
+    const Vector last = as_vector(k.unknowns);
+    const double residual = max_abs(model_.residual(last, lambda)) / load;
+    if (at_floor(last, residual)) {
       free_displacement = last;
-      report.relative_residual = max_abs(model_.residual(last, lambda)) / load;
+      count_iterations();
+      report.relative_residual = residual;
       report.at_rounding_floor = true;
       return report;
     }
@@ -203,8 +210,6 @@ EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacem
     std::ostringstream where;
     where << std::scientific << std::setprecision(2)
           << "equilibrium (Newton, KINSOL) not reached at lambda " << lambda;
-    const Vector last = as_vector(k.unknowns);
-    const double residual = max_abs(model_.residual(last, lambda)) / load;
     if (std::isfinite(residual))
       where << ": the last iterate's residual is " << residual
             << " of the load, against solver.tolerance " << options_.tolerance;
@@ -215,9 +220,7 @@ EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacem
     throw Error(where.str());
   }
   free_displacement = as_vector(k.unknowns);
-  check_flag(KINGetNumNonlinSolvIters(k.memory, &report.newton_iterations),
-             "KINGetNumNonlinSolvIters");
-  check_flag(KINGetNumFuncEvals(k.memory, &report.residual_evaluations), "KINGetNumFuncEvals");
+  count_iterations();
   double scaled_norm = 0;
   check_flag(KINGetFuncNorm(k.memory, &scaled_norm), "KINGetFuncNorm");
   const bool evaluated = k.last_unknowns.size() == free_displacement.size() &&

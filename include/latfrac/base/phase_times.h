@@ -24,7 +24,7 @@ enum class Phase : int {
   criterion,      // the criterion: crossings, screens, ranks, tied groups
   residual,       // the residual checks of the solves
   contacts,       // the contacts' switches: proposals, settling, commits
-  output,         // snapshots, checkpoints, the result file
+  output,         // snapshots and checkpoints (the final result file is written later)
 };
 constexpr int phase_count = 10;
 // A name for the summary: "solves", "factor updates", ...
@@ -41,7 +41,8 @@ class PhaseClock {
   void leave();
   // Every phase's seconds since reset(), the open ones counted up to now.
   std::array<double, phase_count> seconds() const;
-  // Zero for every phase, and nothing open: the time from now on goes to `other`.
+  // Zero for every phase, and nothing open: the time from now on goes to `other`. Call it
+  // with no scope open (a scope open then loses its time, and its leave() does nothing).
   void reset();
 
  private:
