@@ -466,6 +466,12 @@ bool EquilibriumSolver::at_rounding_floor(const Vector& free_displacement, doubl
   return max_abs(residual) <= margin * max_abs(floor);
 }
 
+bool EquilibriumSolver::accepted_at_floor(const Vector& free_displacement, double lambda,
+                                          double residual) {
+  return residual <= max_rounding_excess * options_.tolerance &&
+         at_rounding_floor(free_displacement, lambda);
+}
+
 // A fresh factorization's solve missed the tolerance (docs/robustness.md). A pivot below
 // near_mechanism_pivot of its diagonal is a mechanism that rounding hid from the
 // factorization: the unknown it moves most is named, for the singular-stiffness rule to
@@ -483,9 +489,7 @@ void EquilibriumSolver::fresh_solve_missed(const Vector& free_displacement, doub
             << " of its diagonal: a zero-energy motion of " << mode.moving << " unknowns";
     throw SingularStiffness(message.str(), mode.largest);
   }
-  if (residual <= max_rounding_excess * options_.tolerance &&
-      at_rounding_floor(free_displacement, lambda))
-    return;
+  if (accepted_at_floor(free_displacement, lambda, residual)) return;
   // With friction, the symmetric factor may be sound while the slipping contacts leave a
   // part (nearly) free to slide: the coupled stiffness is singular to rounding, which an
   // LU need not report. Held like any mechanism (docs/robustness.md).

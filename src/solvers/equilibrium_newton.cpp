@@ -184,8 +184,7 @@ EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacem
   // (fresh_solve_missed): KINSOL stops there with steps too small to go on, or out of
   // iterations, and no iterate can do better.
   const auto at_floor = [&](const Vector& u, double residual) {
-    return !model_.is_linear() && residual <= max_rounding_excess * options_.tolerance &&
-           at_rounding_floor(u, lambda);
+    return !model_.is_linear() && accepted_at_floor(u, lambda, residual);
   };
   const auto count_iterations = [&] {
     check_flag(KINGetNumNonlinSolvIters(k.memory, &report.newton_iterations),
@@ -202,7 +201,6 @@ EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacem
       free_displacement = last;
       count_iterations();
       report.relative_residual = residual;
-      report.at_rounding_floor = true;
       return report;
     }
     // Say where, how far from equilibrium the last iterate was, and what may help: KINSOL's
@@ -221,16 +219,12 @@ EquilibriumReport EquilibriumSolver::solve(double lambda, Vector& free_displacem
   }
   free_displacement = as_vector(k.unknowns);
   count_iterations();
-  double scaled_norm = 0;
-  check_flag(KINGetFuncNorm(k.memory, &scaled_norm), "KINGetFuncNorm");
   const bool evaluated = k.last_unknowns.size() == free_displacement.size() &&
                          k.last_unknowns == free_displacement;
   report.relative_residual =
       max_abs(evaluated ? k.last_residual : model_.residual(free_displacement, lambda)) / load;
   if (report.relative_residual > options_.tolerance &&
-      at_floor(free_displacement, report.relative_residual)) {
-    report.at_rounding_floor = true;
-  } else if (report.relative_residual > options_.tolerance) {
+      !at_floor(free_displacement, report.relative_residual)) {
     std::ostringstream message;
     message << std::scientific << std::setprecision(2)
             << "equilibrium (Newton, KINSOL) not reached at lambda " << lambda

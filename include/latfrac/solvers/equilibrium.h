@@ -29,8 +29,6 @@ struct EquilibriumReport {
   long newton_iterations = 0;
   long residual_evaluations = 0;
   double relative_residual = 0;  // max |R| / max |R(0, lambda)|
-  // Above the tolerance but accepted at the rounding floor (large kinematics, Newton).
-  bool at_rounding_floor = false;
 };
 
 // Free displacements along an affine path: u(lambda) = gravity + lambda * extension.
@@ -185,6 +183,9 @@ class EquilibriumSolver {
   // near-mechanism, returns when the residual is at the rounding floor, throws Error else.
   void fresh_solve_missed(const Vector& free_displacement, double lambda, double residual);
   bool at_rounding_floor(const Vector& free_displacement, double lambda);
+  // A miss that no solve can improve on, and so accepted: a relative residual within
+  // max_rounding_excess of the tolerance, at the rounding floor.
+  bool accepted_at_floor(const Vector& free_displacement, double lambda, double residual);
   static constexpr double max_rounding_excess = 100;
   std::string ill_conditioned(const Vector& free_displacement, double lambda,
                               double residual) const;
