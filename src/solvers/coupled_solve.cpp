@@ -154,9 +154,11 @@ const EquilibriumSolver::FollowedSolves& EquilibriumSolver::followed_solves(
   // Every column has a few entries (a bond's), so the backend's sparse route solves them
   // (in the factor's forward half only the columns they reach); a backend without one
   // solves them whole.
+  // (solve_sparse writes every entry of z, or none when it declines.)
   const auto total = static_cast<Eigen::Index>(columns.size());
-  Eigen::MatrixXd z = Eigen::MatrixXd::Zero(n, total);
+  Eigen::MatrixXd z(n, total);
   if (total > 0 && !factor_->solve_sparse(columns, z.data())) {
+    z.setZero();
     for (Eigen::Index c = 0; c < total; ++c)
       for (const auto& [row, value] : columns[static_cast<std::size_t>(c)]) z(row, c) += value;
     factor_->solve(z.data(), n, static_cast<int>(total));

@@ -46,7 +46,8 @@ class LinearBackend {
   virtual void solve(double* rhs, std::int64_t rows, int columns) = 0;
   // Solves K X = B for right-hand sides with few entries each (rows may repeat: they
   // add), X stored column after column (rows x b.size()), when the backend has a cheaper
-  // route for them; returns false, leaving X alone, when it has none.
+  // route for them, writing every entry of X; returns false, leaving X alone, when it
+  // has none.
   virtual bool solve_sparse(const std::vector<Column>& b, double* x) = 0;
   // K <- K + C C' (update) or K - C C' (downdate). Throws Error when the backend cannot
   // (the caller then factorizes afresh).
