@@ -242,6 +242,14 @@ TEST_CASE("Hard: large kinematics across a 1e4 stiffness contrast ends at the ro
   const Balance b = balance(state);
   CHECK(b.relative_residual > scene.solver.tolerance);
   check_final_equilibrium(scene, result, 100 * scene.solver.tolerance);
+  // The run says so: the summary counts the acceptance, and the result file keeps it.
+  CHECK(result.summary.floor_acceptances >= 1);
+  CHECK_THAT(summary_text(result), Catch::Contains("accepted at the rounding floor"));
+  // The default tolerance is met outright there: nothing to count, nothing said.
+  scene.solver.tolerance = 1e-10;
+  const RunResult met = run_scene(scene, quiet());
+  CHECK(met.summary.floor_acceptances == 0);
+  CHECK_THAT(summary_text(met), !Catch::Contains("rounding floor"));
   // A tolerance far below rounding is still refused.
   scene.solver.tolerance = 1e-15;
   REQUIRE_THROWS_WITH(run_scene(scene, quiet()), Catch::Contains("Newton, KINSOL"));

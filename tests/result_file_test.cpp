@@ -74,6 +74,7 @@ void require_equal(const RunResult& read, const RunResult& written) {
   CHECK(read.summary.solves == written.summary.solves);
   CHECK(read.summary.factorizations == written.summary.factorizations);
   CHECK(read.summary.factor_updates == written.summary.factor_updates);
+  CHECK(read.summary.floor_acceptances == written.summary.floor_acceptances);
 }
 
 // The message of the Exception that call throws; fails the test if it throws nothing.

@@ -46,6 +46,7 @@ inline RunResult sample_result() {
   result.summary.solves = 42;
   result.summary.factorizations = 5;
   result.summary.factor_updates = 37;
+  result.summary.floor_acceptances = 2;
   return result;
 }
 

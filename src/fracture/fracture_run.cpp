@@ -42,6 +42,8 @@ RunCounters FractureRun::counters() const {
       resumed_counts_.solves + solver_.counters().solves + equilibrium_.relaxation_solves();
   counters.factorizations = resumed_counts_.factorizations + solver_.counters().factorizations;
   counters.factor_updates = resumed_counts_.factor_updates + solver_.counters().factor_updates;
+  counters.floor_acceptances =
+      resumed_counts_.floor_acceptances + solver_.counters().floor_acceptances;
   return counters;
 }
 

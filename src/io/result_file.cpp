@@ -188,6 +188,7 @@ void write_summary(hid_t file, const RunSummary& summary) {
   hdf5::write_attribute(file, group, "contact_cycles", summary.contact_cycles);
   hdf5::write_attribute(file, group, "relaxation_sweeps", summary.relaxation_sweeps);
   hdf5::write_attribute(file, group, "relaxation_unconverged", summary.relaxation_unconverged);
+  hdf5::write_attribute(file, group, "floor_acceptances", summary.floor_acceptances);
   hdf5::write_attribute(file, group, "final_lambda", summary.final_lambda);
   hdf5::write_attribute(file, group, "wall_seconds", summary.wall_seconds);
   hdf5::write_attribute(file, group, "complete", static_cast<std::uint8_t>(summary.complete));
@@ -363,6 +364,7 @@ RunSummary read_summary(hid_t file) {
   summary.contact_cycles = optional_count("contact_cycles");
   summary.relaxation_sweeps = optional_count("relaxation_sweeps");
   summary.relaxation_unconverged = optional_count("relaxation_unconverged");
+  summary.floor_acceptances = optional_count("floor_acceptances");
   summary.final_lambda = hdf5::read_attribute<double>(file, group, "final_lambda");
   if (hdf5::has_attribute(file, group, "friction_work")) {
     summary.contact_slip = hdf5::read_attribute<double>(file, group, "contact_slip");

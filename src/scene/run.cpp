@@ -228,6 +228,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     result.summary.solves = solver.counters().solves;
     result.summary.factorizations = solver.counters().factorizations;
     result.summary.factor_updates = solver.counters().factor_updates;
+    result.summary.floor_acceptances = solver.counters().floor_acceptances;
   }
   progress.finish();
   if (options.backend_statistics) *options.backend_statistics = solver.factor().statistics();
@@ -291,6 +292,10 @@ std::string summary_text(const RunResult& result) {
                      (result.scene.dim == 2 ? " J per metre\n" : " J\n"))
        << "  solves " << s.solves << ", factorizations " << s.factorizations << ", factor updates "
        << s.factor_updates << "\n"
+       << (s.floor_acceptances
+               ? "  solutions accepted at the rounding floor, above solver.tolerance: " +
+                     std::to_string(s.floor_acceptances) + " (docs/robustness.md)\n"
+               : std::string())
        << "  wall time " << s.wall_seconds << " s\n"
        << time_split_text(s);
   for (const Snapshot& snapshot : result.snapshots) {

@@ -468,8 +468,10 @@ bool EquilibriumSolver::at_rounding_floor(const Vector& free_displacement, doubl
 
 bool EquilibriumSolver::accepted_at_floor(const Vector& free_displacement, double lambda,
                                           double residual) {
-  return residual <= max_rounding_excess * options_.tolerance &&
-         at_rounding_floor(free_displacement, lambda);
+  const bool accepted = residual <= max_rounding_excess * options_.tolerance &&
+                        at_rounding_floor(free_displacement, lambda);
+  if (accepted) ++counters_.floor_acceptances;
+  return accepted;
 }
 
 // A fresh factorization's solve missed the tolerance (docs/robustness.md). A pivot below

@@ -69,6 +69,8 @@ struct RunCounters {
   std::int64_t contact_cycles = 0;  // contact iterations that cycled and were resolved
   std::int64_t relaxation_sweeps = 0;       // solver.method = "relaxation": sweeps in all
   std::int64_t relaxation_unconverged = 0;  // relaxation solves stopped by the sweep cap
+  // Solutions accepted at the rounding floor, above solver.tolerance (docs/robustness.md).
+  std::int64_t floor_acceptances = 0;
 };
 
 struct RunSummary : RunCounters {

@@ -44,6 +44,9 @@ struct SolverCounters {
   long factorizations = 0;  // numeric factorizations
   long factor_updates = 0;  // rank updates of the factor
   long correction_solves = 0;  // of the solves: few-entry corrections (checked_solve)
+  // Solutions accepted at the rounding floor with a residual above solver.tolerance
+  // (within max_rounding_excess of it; docs/robustness.md).
+  long floor_acceptances = 0;
 };
 
 class EquilibriumSolver {
@@ -184,7 +187,8 @@ class EquilibriumSolver {
   void fresh_solve_missed(const Vector& free_displacement, double lambda, double residual);
   bool at_rounding_floor(const Vector& free_displacement, double lambda);
   // A miss that no solve can improve on, and so accepted: a relative residual within
-  // max_rounding_excess of the tolerance, at the rounding floor.
+  // max_rounding_excess of the tolerance, at the rounding floor. Counts each acceptance
+  // (SolverCounters::floor_acceptances): its callers take the solution when it is true.
   bool accepted_at_floor(const Vector& free_displacement, double lambda, double residual);
   static constexpr double max_rounding_excess = 100;
   std::string ill_conditioned(const Vector& free_displacement, double lambda,
