@@ -1,22 +1,11 @@
 // The [lattice] section, and the Poisson's ratios the chosen lattice can represent.
-#include <iomanip>
-#include <sstream>
 
+#include "latfrac/base/number_text.h"
 #include "latfrac/geometry/lattice.h"
 #include "latfrac/mechanics/random_calibration.h"
 #include "problem_reader.h"
 
 namespace latfrac::problem {
-namespace {
-
-std::string rounded(double value) {
-  std::ostringstream text;
-  text << std::setprecision(3) << value;
-  return text.str();
-}
-
-}  // namespace
-
 LatticeSpec read_lattice(const Section& top) {
   const Section s = top.required_section(
       "lattice", {"dim", "kind", "spacing", "size", "next_nearest", "seed", "mirror"});
@@ -50,9 +39,9 @@ LatticeSpec read_lattice(const Section& top) {
     }
     if (extent / lattice.spacing > max_spacings_per_axis) {
       s.fail("spacing",
-             format_number(lattice.spacing) + " m puts " + rounded(extent / lattice.spacing) +
-                 " spacings along an extent of " + format_number(extent) +
-                 " m (no machine holds such a lattice, even with --force)",
+             format_number(lattice.spacing) + " m puts " +
+                 significant(extent / lattice.spacing, 3) + " spacings along an extent of " +
+                 format_number(extent) + " m (no machine holds such a lattice, even with --force)",
              "allowed: at most " + format_number(max_spacings_per_axis) + " spacings per axis");
     }
   }

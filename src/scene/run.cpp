@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "latfrac/base/error.h"
+#include "latfrac/base/number_text.h"
 #include "latfrac/base/phase_times.h"
 #include "latfrac/base/progress.h"
 #include "latfrac/fracture/fracture_run.h"
@@ -241,14 +242,6 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   return result;
 }
 
-namespace {
-std::string format_number(double value) {
-  std::ostringstream text;
-  text << std::setprecision(6) << value;
-  return text.str();
-}
-}  // namespace
-
 // "  time by part (this process, s): solves 41.2, ..." in Phase order, the parts with
 // any time; empty when the split was not measured.
 std::string time_split_text(const RunSummary& s) {
@@ -287,8 +280,8 @@ std::string summary_text(const RunResult& result) {
                                : std::string())
        << (result.contact_slip.empty()
                ? std::string()
-               : "  friction: contact slip " + format_number(s.contact_slip) +
-                     " m in all, work dissipated " + format_number(s.friction_work) +
+               : "  friction: contact slip " + significant(s.contact_slip, 6) +
+                     " m in all, work dissipated " + significant(s.friction_work, 6) +
                      (result.scene.dim == 2 ? " J per metre\n" : " J\n"))
        << "  solves " << s.solves << ", factorizations " << s.factorizations << ", factor updates "
        << s.factor_updates << "\n"

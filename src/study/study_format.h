@@ -6,25 +6,10 @@
 #include <optional>
 #include <string>
 
+#include "latfrac/base/number_text.h"
 #include "latfrac/study/study.h"
 
 namespace latfrac {
-
-// The shortest decimal that reads back as the same double.
-inline std::string full_precision(double value) {
-  char text[32];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(text, sizeof text, "%.*g", digits, value);
-    if (std::strtod(text, nullptr) == value) break;
-  }
-  return text;
-}
-
-inline std::string significant(double value, int digits) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*g", digits, value);
-  return text;
-}
 
 // Empty for no value; `digits` significant digits, or (0) every digit needed.
 inline std::string optional_text(const std::optional<double>& value, int digits) {
