@@ -270,12 +270,26 @@ TEST_CASE("bad options are input errors and write no file", "[render]") {
 
 TEST_CASE("a failed write throws and leaves no file", "[render]") {
   ScratchDir dir;
-  for (const std::string name : {"no_such_dir/picture.png", "no_such_dir/picture.svg"}) {
+  std::ofstream(dir.file("a_file")) << "not a directory\n";
+  for (const std::string name :
+       {"a_file/picture.png", "a_file/picture.svg", "a_file/sub/picture.pdf"}) {
     const std::string path = dir.file(name);
-    CHECK_THROWS_AS(render_picture(triangular_patch(), 0, path), Error);
+    INFO(name);
+    CHECK_THROWS_WITH(render_picture(triangular_patch(), 0, path),
+                      Catch::Contains("cannot create the directory"));
     CHECK_FALSE(fs::exists(path));
     CHECK_FALSE(fs::exists(path + ".partial"));
   }
+  CHECK(read_text(dir.file("a_file")) == "not a directory\n");
+}
+
+TEST_CASE("a picture's missing folders are made, as run -o makes its own", "[render]") {
+  ScratchDir dir;
+  const std::string path = dir.file("figures/sections/picture.png");
+  render_picture(triangular_patch(), 0, path);
+  CHECK(fs::is_regular_file(path));
+  CHECK(fs::file_size(path) > 0);
+  CHECK_FALSE(fs::exists(path + ".partial"));
 }
 
 TEST_CASE("snapshot_nearest picks the nearest lambda, the last for NaN", "[render]") {
