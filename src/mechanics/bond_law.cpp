@@ -29,12 +29,6 @@ BondDeformation SmallKinematics::deformation(const BondReference& reference,
   return d;
 }
 
-// kn dn n0 + ks (du - dn n0) = ks du + (kn - ks) dn n0.
-Vec3 SmallKinematics::tension(const PairSprings& pair, PairState, const Vec3& du) const {
-  const double dn = pair.direction.dot(du);
-  return pair.ks * du + (pair.kn - pair.ks) * dn * pair.direction;
-}
-
 Mat3 SmallKinematics::tangent(const PairSprings& pair, PairState, const Vec3&) const {
   const Mat3 projector = pair.direction * pair.direction.transpose();
   return pair.kn * projector + pair.ks * (Mat3::Identity() - projector);

@@ -110,10 +110,25 @@ void add_at_end(bool plane, Mat3& sum, Vec3* force, const Vec3& arm, const Vec3&
   }
 }
 
-Vec3 tension_of(const Model& model, std::int64_t b, const Vector& displacement, bool state) {
+// Bond b's tension under `law` (the model's bond law, as its own type or as a BondLaw).
+template <class Law>
+Vec3 tension_of(const Law& law, const Model& model, std::int64_t b, const Vector& displacement,
+                bool state) {
   const Vec3 du =
       state ? model.bond_displacement(displacement, b) : model.relative_motion(displacement, b);
-  return model.bond_law().tension(model.springs(b), PairState::intact, du);
+  return law.tension(model.springs(b), PairState::intact, du);
+}
+
+// Calls body(law) with the model's bond law: as a SmallKinematics where it is one (a final
+// class, so its tension is called inline in the sweep), else as a BondLaw. The same
+// function computes each tension either way.
+template <class Body>
+void with_bond_law(const Model& model, const Body& body) {
+  if (const auto* small = dynamic_cast<const SmallKinematics*>(&model.bond_law())) {
+    body(*small);
+  } else {
+    body(model.bond_law());
+  }
 }
 
 // One node's sums over its intact bonds in bond order, the tension of bond b for field f
@@ -155,29 +170,35 @@ void sum_dyads(const Model& model, std::initializer_list<DyadSums*> fields) {
       std::fill(f->sum.begin(), f->sum.end(), Mat3::Zero());
       std::fill(f->bond_force.begin(), f->bond_force.end(), Vec3::Zero());
     }
-    for (std::int64_t b = 0; b < bonds; ++b) {
-      if (!model.intact(b)) continue;
-      const Bond& bond = lattice.bonds[b];
-      const Vec3 arm_i = arm_at(lattice, b, bond.i, false),
-                 arm_j = arm_at(lattice, b, bond.j, true);
-      for (DyadSums* f : field) {
-        const Vec3 t = tension_of(model, b, f->displacement, f->state);
-        const bool forces = !f->bond_force.empty();
-        add_at_end(plane, f->sum[bond.i], forces ? &f->bond_force[bond.i] : nullptr, arm_i, t,
-                   false);
-        add_at_end(plane, f->sum[bond.j], forces ? &f->bond_force[bond.j] : nullptr, arm_j, t,
-                   true);
+    with_bond_law(model, [&](const auto& law) {
+      for (std::int64_t b = 0; b < bonds; ++b) {
+        if (!model.intact(b)) continue;
+        const Bond& bond = lattice.bonds[b];
+        const Vec3 arm_i = arm_at(lattice, b, bond.i, false),
+                   arm_j = arm_at(lattice, b, bond.j, true);
+        for (DyadSums* f : field) {
+          const Vec3 t = tension_of(law, model, b, f->displacement, f->state);
+          const bool forces = !f->bond_force.empty();
+          add_at_end(plane, f->sum[bond.i], forces ? &f->bond_force[bond.i] : nullptr, arm_i, t,
+                     false);
+          add_at_end(plane, f->sum[bond.j], forces ? &f->bond_force[bond.j] : nullptr, arm_j, t,
+                     true);
+        }
       }
-    }
+    });
     return;
   }
-  std::vector<std::vector<Vec3>> tension(count, std::vector<Vec3>(bonds));
-  threads::for_blocks(bonds, threads::bond_grain, [&](std::int64_t first, std::int64_t last) {
-    for (std::int64_t b = first; b < last; ++b) {
-      if (!model.intact(b)) continue;
-      for (std::size_t f = 0; f < count; ++f)
-        tension[f][b] = tension_of(model, b, field[f]->displacement, field[f]->state);
-    }
+  // The fields' tensions of one bond side by side: the node sums read them together.
+  std::vector<Vec3> tension(count * static_cast<std::size_t>(bonds));
+  with_bond_law(model, [&](const auto& law) {
+    threads::for_blocks(bonds, threads::bond_grain, [&](std::int64_t first, std::int64_t last) {
+      for (std::int64_t b = first; b < last; ++b) {
+        if (!model.intact(b)) continue;
+        for (std::size_t f = 0; f < count; ++f)
+          tension[static_cast<std::size_t>(b) * count + f] =
+              tension_of(law, model, b, field[f]->displacement, field[f]->state);
+      }
+    });
   });
   const NodeBonds& index = model.node_bonds();
   const bool forces = !field[0]->bond_force.empty();
@@ -187,7 +208,9 @@ void sum_dyads(const Model& model, std::initializer_list<DyadSums*> fields) {
         Vec3 force[2];
         for (std::int64_t n = first; n < last; ++n) {
           node_sums(model, index, n, count, sum, forces ? force : nullptr,
-                    [&](std::size_t f, std::int64_t b) -> const Vec3& { return tension[f][b]; });
+                    [&](std::size_t f, std::int64_t b) -> const Vec3& {
+                      return tension[static_cast<std::size_t>(b) * count + f];
+                    });
           for (std::size_t f = 0; f < count; ++f) {
             field[f]->sum[n] = sum[f];
             if (forces) field[f]->bond_force[n] = force[f];
@@ -256,9 +279,10 @@ std::vector<double> node_stresses_at(const Model& model, const Vector& displacem
   for (const std::int64_t n : nodes) {
     Mat3 sum;
     Vec3 force;
-    node_sums(
-        model, index, n, 1, &sum, pieces.empty() ? nullptr : &force,
-        [&](std::size_t, std::int64_t b) { return tension_of(model, b, displacement, true); });
+    node_sums(model, index, n, 1, &sum, pieces.empty() ? nullptr : &force,
+              [&](std::size_t, std::int64_t b) {
+                return tension_of(model.bond_law(), model, b, displacement, true);
+              });
     const auto first = static_cast<std::size_t>(
         std::lower_bound(pieces.begin(), pieces.end(), n,
                          [](const FacePiece& p, std::int64_t node) { return p.node < node; }) -

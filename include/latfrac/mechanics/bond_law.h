@@ -68,7 +68,12 @@ class SmallKinematics final : public BondLaw {
   using BondLaw::BondLaw;
   BondDeformation deformation(const BondReference& reference,
                               const Vec3& relative_displacement) const override;
-  Vec3 tension(const PairSprings& pair, PairState, const Vec3& du) const override;
+  // kn dn n0 + ks (du - dn n0) = ks du + (kn - ks) dn n0. Defined here so that a sweep that
+  // knows its law is this one (the class is final) calls it inline.
+  Vec3 tension(const PairSprings& pair, PairState, const Vec3& du) const override {
+    const double dn = pair.direction.dot(du);
+    return pair.ks * du + (pair.kn - pair.ks) * dn * pair.direction;
+  }
   Mat3 tangent(const PairSprings& pair, PairState, const Vec3& du) const override;
   bool is_linear() const override { return true; }
 };
