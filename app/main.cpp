@@ -330,7 +330,12 @@ int study_command(const std::string& problem, const std::vector<std::string>& se
   // 1. Check the increments before anything runs; read the scene; refuse what cannot fit.
   StudyOptions options;
   options.increments = parse_increments(increments);
-  const Scene scene = read_problem_file(problem, sets);
+  // The study's runs take their own snapshot at loading.total (study.h), so the file's
+  // snapshots are dropped first: a --set loading.total below them is not refused for
+  // them. A --set output.snapshots still applies, and is checked as in run.
+  std::vector<std::string> study_sets{"output.snapshots=[]"};
+  study_sets.insert(study_sets.end(), sets.begin(), sets.end());
+  const Scene scene = read_problem_file(problem, study_sets);
   if (scene.solver.backend == LinearBackendKind::petsc)
     throw InputError(problem + ": solver.backend = \"petsc\" is for latfrac run (under mpirun); "
                      "latfrac study runs on the cholmod backend (--set solver.backend=cholmod)");
