@@ -166,11 +166,12 @@ Scene resumed_scene(const RunRequest& request, ResumePoint& point) {
     }
     if (sets != checkpoint.overrides) {
       std::string list;
-      for (const std::string& set : checkpoint.overrides) list += " --set " + set;
+      for (const std::string& set : checkpoint.overrides)
+        list += (list.empty() ? "--set " : " --set ") + set;
       throw InputError("cannot resume '" + request.resume +
                        "': the --set overrides differ from "
                        "those the run started with (" +
-                       (list.empty() ? " none" : list) + ")" + advice);
+                       (list.empty() ? "none" : list) + ")" + advice);
     }
     if (recorded.version != code_version() || recorded.git_commit != code_commit()) {
       throw InputError("cannot resume '" + request.resume + "': it was written by latfrac " +

@@ -111,8 +111,8 @@ refuse-changed)
     fail "a changed problem: message was: $(cat "$work/refused.err")"
   sed -i '1d' "$problem"
   "$latfrac" run --resume "$h5" --quiet --set lattice.spacing=1234 > /dev/null 2> "$work/sets.err"
-  [[ $? == 2 ]] && grep -q "overrides differ" "$work/sets.err" ||
-    fail "changed --set: $(cat "$work/sets.err")"
+  [[ $? == 2 ]] && grep -qF "overrides differ from those the run started with (${sets[*]})" \
+    "$work/sets.err" || fail "changed --set: $(cat "$work/sets.err")"
   # Not even --force resumes with another increment (the checkpoint counts steps of the
   # old one) or a total on the other side of the lambda it has reached.
   for change in "stepping.increment=0.01" "loading.total=-0.01"; do
