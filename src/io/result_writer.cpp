@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "latfrac/base/atomic_write.h"
 #include "latfrac/base/error.h"
 #include "latfrac/base/stop_signal.h"
 #include "latfrac/io/result_file.h"
@@ -47,11 +48,7 @@ ResultWriter::ResultWriter(std::string h5_path, std::string xmf_path, double che
 // The output directory and the lock, at the first write: a run refused before it writes
 // leaves nothing behind.
 void ResultWriter::open() {
-  const std::filesystem::path directory = std::filesystem::path(h5_path_).parent_path();
-  std::error_code error;
-  if (!directory.empty()) std::filesystem::create_directories(directory, error);
-  if (error)
-    throw Error("cannot create output directory '" + directory.string() + "': " + error.message());
+  make_directory(std::filesystem::path(h5_path_).parent_path());
   const int descriptor = ::open(lock_path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (descriptor < 0) {
     throw Error("cannot write results to '" + h5_path_ + "': cannot create '" + lock_path_ +

@@ -217,14 +217,7 @@ void draw_picture_file(const std::string& path, int width, int height,
                        const std::function<void(Canvas&)>& draw) {
   const PictureFormat format = picture_format_of(path);
   // The picture's folder is made when missing, as `latfrac run -o` makes its own.
-  if (const std::filesystem::path folder = std::filesystem::path(path).parent_path();
-      !folder.empty()) {
-    std::error_code error;
-    std::filesystem::create_directories(folder, error);
-    if (error)
-      throw Error("cannot create the directory '" + folder.string() + "' for the picture '" + path +
-                  "': " + error.message());
-  }
+  make_directory(std::filesystem::path(path).parent_path());
   write_atomically(path, [&](const std::string& partial) {
     Canvas canvas(format, partial, width, height);
     draw(canvas);

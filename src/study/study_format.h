@@ -1,8 +1,6 @@
 // Number and label formats shared by the study's tables, progress lines and readings.
 #pragma once
 
-#include <cstdio>
-#include <cstdlib>
 #include <optional>
 #include <string>
 

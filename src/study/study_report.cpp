@@ -167,9 +167,7 @@ std::string study_markdown(const StudyResult& study) {
 }
 
 void write_study(const StudyResult& study, const std::string& out_dir) {
-  std::error_code error;
-  std::filesystem::create_directories(out_dir, error);
-  if (error) throw Error("cannot create output directory '" + out_dir + "': " + error.message());
+  make_directory(out_dir);
   const std::filesystem::path dir(out_dir);
   auto write_text = [](const std::string& path, const std::string& text) {
     write_atomically(path, [&](const std::string& partial) {

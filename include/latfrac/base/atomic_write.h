@@ -11,6 +11,16 @@ namespace latfrac {
 
 inline std::string partial_path(const std::string& path) { return path + ".partial"; }
 
+// Makes `directory` and its missing parents (nothing when it is empty or exists); throws
+// Error naming it when it cannot be made (a regular file in the way, no permission).
+inline void make_directory(const std::filesystem::path& directory) {
+  if (directory.empty()) return;
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error)
+    throw Error("cannot create output directory '" + directory.string() + "': " + error.message());
+}
+
 // Calls write(partial_path(path)), then renames the partial file to path. If write throws
 // or the rename fails, the partial file is removed and the exception propagates, so a
 // reader never sees a file at path that is not complete.
