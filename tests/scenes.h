@@ -35,8 +35,10 @@ inline Strength strength_of(Criterion criterion, double sigma0, double friction_
 
 // Runs the fracture of a model built from `scene` (and changed by the caller, which is what
 // run_scene cannot do), holding what the pre-cuts cut loose first. `integrated`: follow
-// the paths with CVODE and KINSOL even for a linear law.
-inline RunResult run_model(Model& model, const Scene& scene, bool integrated = false) {
+// the paths with CVODE and KINSOL even for a linear law. `screened`: whether event-driven
+// crossing searches may be screened (path_screen.h); `screened_searches` gets how many were.
+inline RunResult run_model(Model& model, const Scene& scene, bool integrated = false,
+                           bool screened = true, std::int64_t* screened_searches = nullptr) {
   prepare_supports(model, scene.source_path);
   EquilibriumSolver solver(model, scene.solver);
   ProgressLine progress(false);
@@ -45,7 +47,9 @@ inline RunResult run_model(Model& model, const Scene& scene, bool integrated = f
                        scene.strength->bond_stress, schedule_of(scene), scene.solver, solver,
                        progress, result);
   fracture.use_integrated_path(integrated);
+  fracture.screen_paths(screened);
   fracture.run();
+  if (screened_searches) *screened_searches = fracture.screened_searches();
   return result;
 }
 

@@ -185,13 +185,14 @@ namespace {
 // Whether f can reach 1 on [from, until] when index() grows with sigma_n and tau: it is
 // at most index(the larger sigma_n at the ends, the larger |tau| at the ends). The margin
 // keeps a bond whose f at `from` rounds differently here than in the crossing search.
+// With `error`, the same for any stresses within that distance of s's (Pa).
 bool may_reach_one(const FailureCriterion& criterion, const AffineBondStress& s,
-                   const BondStrength& strength, double from, double until) {
+                   const BondStrength& strength, double from, double until, double error = 0) {
   if (!criterion.index_grows_with_stress() || !std::isfinite(until)) return true;
   const double normal = std::max(s.normal0 + from * s.normal1, s.normal0 + until * s.normal1);
   const double shear =
       std::max((s.shear0 + from * s.shear1).norm(), (s.shear0 + until * s.shear1).norm());
-  return criterion.index(normal, shear, strength).value >= 1 - 1e-9;
+  return criterion.index(normal + error, shear + error, strength).value >= 1 - 1e-9;
 }
 
 }  // namespace
@@ -214,6 +215,12 @@ bool FailureEvaluator::may_fail_at(const Model& model, const PathStresses& path,
     }
   });
   return found;
+}
+
+bool FailureEvaluator::may_cross_near(const Model& model, std::int64_t b,
+                                      const AffineBondStress& near, double error, double from,
+                                      double until) const {
+  return may_reach_one(*criterion_, near, strength_of(model, b), from, until, error);
 }
 
 AffineBondStress FailureEvaluator::affine_stress(const Model& model, std::int64_t b,

@@ -11,13 +11,16 @@ void follow_events(EquilibriumState& equilibrium, const std::vector<EventSource*
   double lambda = from;
   while (lambda != to) {
     const AffinePath& path = equilibrium.path(lambda);
+    // Asked last to first, each with the earliest event so far as the bound of what it
+    // need find: a source listed earlier wins a tie, so it takes an equal lambda too.
     EventSource* first = nullptr;
     double next = to;
-    for (EventSource* source : sources) {
-      const double proposed = source->propose(path, lambda, to);
+    for (auto source = sources.rbegin(); source != sources.rend(); ++source) {
+      const double proposed =
+          (*source)->propose(path, lambda, to, first ? next : EventSource::none);
       if (std::isnan(proposed)) continue;
-      if (!first || std::abs(proposed) < std::abs(next)) {
-        first = source;
+      if (!first || std::abs(proposed) <= std::abs(next)) {
+        first = *source;
         next = proposed;
       }
     }

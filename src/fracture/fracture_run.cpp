@@ -3,6 +3,7 @@
 #include "latfrac/fracture/fracture_run.h"
 
 #include <cmath>
+#include <optional>
 
 #include "latfrac/base/error.h"
 #include "latfrac/base/parallel.h"
@@ -182,7 +183,9 @@ void FractureRun::fixed_steps() {
 // Breaks first, then contact switches: on a tie the break is taken.
 void FractureRun::event_driven() {
   PathStressCache stresses(equilibrium_, evaluator_);
-  BreakSource breaks(equilibrium_, evaluator_, breaking_, &stresses);
+  std::optional<PathScreen> screen;
+  if (screen_paths_ && PathScreen::applies(model_, evaluator_)) screen.emplace(model_, evaluator_);
+  BreakSource breaks(equilibrium_, evaluator_, breaking_, &stresses, screen ? &*screen : nullptr);
   PairSwitchSource switches(equilibrium_, settling_);
   equilibrium_.want_paths(true);
   // After a change the new path is at hand, and the crossing search reads its stresses
@@ -218,6 +221,7 @@ void FractureRun::event_driven() {
       });
   breaking_.between_groups(nullptr);
   breaking_.screen(nullptr);
+  if (screen) screened_searches_ = screen->screened_searches();
   snapshots_.take_until(schedule_.total, true, [&](double at) { take_snapshot(at); });
 }
 

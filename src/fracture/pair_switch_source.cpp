@@ -6,7 +6,7 @@
 namespace latfrac {
 
 // The first switch after `from`, lowest bond id on ties.
-double PairSwitchSource::propose(const AffinePath& path, double from, double to) {
+double PairSwitchSource::propose(const AffinePath& path, double from, double to, double) {
   const ScopedPhase phase(Phase::contacts);
   const Model& model = equilibrium_.model();
   proposed_.bond = -1;

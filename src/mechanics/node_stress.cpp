@@ -3,6 +3,7 @@
 #include "latfrac/mechanics/node_stress.h"
 
 #include <algorithm>
+#include <cmath>
 #include <initializer_list>
 #include <limits>
 
@@ -297,6 +298,69 @@ std::vector<double> node_stresses_at(const Model& model, const Vector& displacem
 std::vector<double> node_stress_rates(const Model& model, const Vector& direction) {
   const ScopedPhase phase(Phase::node_stress);
   return stresses(model, direction, false);
+}
+
+NodeStressPath node_stress_path_at(const Model& model, const Vector& at_zero,
+                                   const Vector& per_unit, const std::vector<std::int64_t>& nodes) {
+  const ScopedPhase phase(Phase::node_stress);
+  const Lattice& lattice = model.lattice;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  NodeStressPath path{std::vector<double>(lattice.node_count() * 6, nan),
+                      std::vector<double>(lattice.node_count() * 6, nan)};
+  const NodeBonds& index = model.node_bonds();
+  const auto& pieces = lattice.face_pieces;
+  with_bond_law(model, [&](const auto& law) {
+    for (const std::int64_t n : nodes) {
+      Mat3 sum[2];
+      Vec3 force[2];
+      node_sums(model, index, n, 2, sum, pieces.empty() ? nullptr : force,
+                [&](std::size_t f, std::int64_t b) {
+                  return f == 0 ? tension_of(law, model, b, at_zero, true)
+                                : tension_of(law, model, b, per_unit, false);
+                });
+      const auto first = static_cast<std::size_t>(
+          std::lower_bound(pieces.begin(), pieces.end(), n,
+                           [](const FacePiece& p, std::int64_t node) { return p.node < node; }) -
+          pieces.begin());
+      if (first < pieces.size() && pieces[first].node == n) {
+        const std::size_t last = pieces_end(pieces, first);
+        add_node_support_dyads(model, first, last, force[0], true, sum[0]);
+        add_node_support_dyads(model, first, last, force[1], false, sum[1]);
+      }
+      voigt_of(model, n, sum[0], true, &path.at_zero[n * 6]);
+      voigt_of(model, n, sum[1], false, &path.per_unit[n * 6]);
+    }
+  });
+  return path;
+}
+
+std::vector<double> node_stress_bounds(const Model& model) {
+  const Lattice& lattice = model.lattice;
+  const int dim = lattice.dim;
+  // |du| <= 2 sqrt(dim) max|u| for a bond's relative displacement; |t| <= max(kn, ks) |du|.
+  const double relative = 2 * std::sqrt(static_cast<double>(dim));
+  std::vector<double> arms(lattice.node_count(), 0.0), forces(lattice.node_count(), 0.0);
+  for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
+    const Bond& bond = lattice.bonds[b];
+    const PairSprings springs = model.springs(b);
+    const double stiffness = relative * std::max(std::abs(springs.kn), std::abs(springs.ks));
+    arms[bond.i] += arm_at(lattice, b, bond.i, false).norm() * stiffness;
+    arms[bond.j] += arm_at(lattice, b, bond.j, true).norm() * stiffness;
+    forces[bond.i] += stiffness;
+    forces[bond.j] += stiffness;
+  }
+  // A face node's supports: each of its components, if held, balances its bonds' forces
+  // (at most the sum of their sizes) on the arm of one of its pieces.
+  std::vector<double> piece_arm(lattice.node_count(), 0.0);
+  for (const FacePiece& piece : lattice.face_pieces)
+    piece_arm[piece.node] = std::max(piece_arm[piece.node], piece.arm.norm());
+  std::vector<double> bound(lattice.node_count());
+  const double scale = 1.0 / (2 * lattice.node_volume);
+  for (std::int64_t n = 0; n < lattice.node_count(); ++n) {
+    const double weight = lattice.is_random() ? 1.0 / lattice.node_volumes[n] : scale;
+    bound[n] = weight * (arms[n] + dim * piece_arm[n] * forces[n]);
+  }
+  return bound;
 }
 
 NodeStressPath node_stress_path(const Model& model, const Vector& at_zero, const Vector& per_unit) {

@@ -76,6 +76,22 @@ class FailureEvaluator {
   static constexpr double screen_margin = 1e-9;
   bool may_fail_at(const Model& model, const PathStresses& path, double s) const;
 
+  // Whether bounds on a bond's stresses can rule out its crossing (may_cross_near): the
+  // stress tensor resolved on the bond, with a criterion whose index does not fall as
+  // sigma_n or tau grows.
+  bool bounds_rule_out() const {
+    return reading_ == Reading::resolved_tensor && criterion_->index_grows_with_stress();
+  }
+  // Bond b's normal and shear stress along the path, affine in s (the resolved-tensor and
+  // strain readings).
+  AffineBondStress affine_stress(const Model& model, std::int64_t b,
+                                 const PathStresses& path) const;
+  // Whether bond b may reach f = 1 somewhere in [from, until] on a path whose normal and
+  // shear stress differ from `near` by at most `error` there (Pa). False rules a crossing
+  // out; the same margin as the search's own skip. Needs bounds_rule_out().
+  bool may_cross_near(const Model& model, std::int64_t b, const AffineBondStress& near,
+                      double error, double from, double until) const;
+
   const FailureCriterion& criterion() const { return *criterion_; }
   const CriterionParameters& parameters() const { return criterion_->parameters(); }
   // True when f comes from the bonds' stress tensors (a tensor-only criterion, or
@@ -92,9 +108,6 @@ class FailureEvaluator {
   BondStrength strength_of(const Model& model, std::int64_t bond) const {
     return {model.bond_sigma0[bond], model.bond_tau0[bond]};
   }
-  // Bond b's normal and shear stress along the path, affine in s (the resolved-tensor and
-  // strain readings).
-  AffineBondStress affine_stress(const Model& model, std::int64_t b, const PathStresses& path) const;
   // A quantity that grows with f and is cheap to compute (no square root), and the
   // relative tolerance in it that matches tie_tolerance in f.
   double rank(const Model& model, const Vector& displacement, std::int64_t bond,

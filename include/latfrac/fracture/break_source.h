@@ -12,6 +12,7 @@
 
 #include "latfrac/fracture/breaking.h"
 #include "latfrac/fracture/event_source.h"
+#include "latfrac/fracture/path_screen.h"
 
 namespace latfrac {
 
@@ -25,9 +26,17 @@ struct PathCrossing {
 // The first bonds to reach f = 1 after `from` and no later than `to`.
 PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
                         const AffinePath& path, double from, double to);
-// The same on stresses already computed for the path (PathStressCache).
+// The same on stresses already computed for the path (PathStressCache). A crossing after
+// needed_until (NaN: none) cannot matter: the search may skip the bonds that cannot cross
+// by then (with room for ties), and then returns a later crossing or none.
 PathCrossing next_break(const Model& model, const FailureEvaluator& evaluator,
-                        const PathStresses& stresses, double from, double to);
+                        const PathStresses& stresses, double from, double to,
+                        double needed_until = EventSource::none);
+// The same among the listed intact bonds only (ascending ids), on one rank: `stresses`
+// need hold only their nodes' stresses.
+PathCrossing next_break_among(const Model& model, const FailureEvaluator& evaluator,
+                              const PathStresses& stresses, const std::vector<std::int64_t>& bonds,
+                              double from, double to, double needed_until);
 
 // The stresses along the equilibrium's current path, computed once per path: the
 // cascade's screen after a change (Breaking::screen) and the crossing search that follows
@@ -38,6 +47,10 @@ class PathStressCache {
       : equilibrium_(equilibrium), evaluator_(evaluator) {}
   // For the current path (at hand: equilibrium.path_at_hand()), searched in direction sign.
   const PathStresses& current(double lambda, double sign);
+  // Whether current() would read them without a sweep.
+  bool holds_current(double sign) const {
+    return valid_ && version_ == equilibrium_.path_version() && sign_ == sign;
+  }
 
  private:
   EquilibriumState& equilibrium_;
@@ -50,11 +63,17 @@ class PathStressCache {
 
 class BreakSource final : public EventSource {
  public:
-  // With a cache, the search on the equilibrium's current path reads its stresses there.
+  // With a cache, the search on the equilibrium's current path reads its stresses there;
+  // with a screen as well, a path that follows a contact switch is searched only at the
+  // bonds the screen cannot rule out (path_screen.h).
   BreakSource(EquilibriumState& equilibrium, const FailureEvaluator& evaluator, Breaking& breaking,
-              PathStressCache* stresses = nullptr)
-      : equilibrium_(equilibrium), evaluator_(evaluator), breaking_(breaking), stresses_(stresses) {}
-  double propose(const AffinePath& path, double from, double to) override;
+              PathStressCache* stresses = nullptr, PathScreen* screen = nullptr)
+      : equilibrium_(equilibrium),
+        evaluator_(evaluator),
+        breaking_(breaking),
+        stresses_(stresses),
+        screen_(screen) {}
+  double propose(const AffinePath& path, double from, double to, double needed_until) override;
   // The tied bonds break as a group (largest f first is not needed: their f are equal
   // within rounding), then the cascade runs at that lambda with the same cascade id.
   void take(double lambda) override;
@@ -64,6 +83,7 @@ class BreakSource final : public EventSource {
   const FailureEvaluator& evaluator_;
   Breaking& breaking_;
   PathStressCache* stresses_;
+  PathScreen* screen_;
   PathCrossing proposed_;
 };
 

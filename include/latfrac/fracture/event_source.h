@@ -18,8 +18,10 @@ class EventSource {
  public:
   virtual ~EventSource() = default;
   // The lambda of this source's first event on `path` after `from`, no later than `to`;
-  // NaN when there is none.
-  virtual double propose(const AffinePath& path, double from, double to) = 0;
+  // NaN when there is none. An event after needed_until (NaN: none given) cannot be taken,
+  // since another source's comes first: the source may then return any later lambda, or
+  // NaN, and save the search.
+  virtual double propose(const AffinePath& path, double from, double to, double needed_until) = 0;
   // The loop has moved to lambda (whichever source's event it is, or the end).
   virtual void reached(double /*lambda*/) {}
   // Takes the event this source proposed last, at its lambda: changes the model,

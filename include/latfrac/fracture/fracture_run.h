@@ -49,6 +49,11 @@ class FractureRun {
   // Follow paths with CVODE and KINSOL (docs/large-kinematics.md) even when the bond law
   // is linear and the closed-form route would serve: for comparing the two routes.
   void use_integrated_path(bool on) { integrated_ = on; }
+  // Search every event-driven path in full (on: screened where it applies, the default;
+  // path_screen.h). The events are the same either way: for comparing the two.
+  void screen_paths(bool on) { screen_paths_ = on; }
+  // Of the event-driven crossing searches, how many the screen answered (0 without it).
+  std::int64_t screened_searches() const { return screened_searches_; }
 
   // What the run counted, the solver's work included.
   RunCounters counters() const;
@@ -78,6 +83,8 @@ class FractureRun {
   Breaking breaking_;
   SnapshotSchedule snapshots_;
   bool integrated_ = false;
+  bool screen_paths_ = true;
+  std::int64_t screened_searches_ = 0;
   RunControl* control_ = nullptr;
   const RunCheckpoint* resumed_ = nullptr;  // set by resume_from until run() starts
   RunCounters resumed_counts_;              // the solver's counts before the resume

@@ -39,7 +39,7 @@ class PairSwitchSource final : public EventSource {
  public:
   PairSwitchSource(EquilibriumState& equilibrium, PairSettling& settling)
       : equilibrium_(equilibrium), settling_(settling) {}
-  double propose(const AffinePath& path, double from, double to) override;
+  double propose(const AffinePath& path, double from, double to, double needed_until) override;
   void reached(double lambda) override;
   void take(double lambda) override;
   // The window: this times max(|lambda|, 1e-6).

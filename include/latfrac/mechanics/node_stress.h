@@ -45,5 +45,17 @@ struct NodeStressPath {
   std::vector<double> at_zero, per_unit;
 };
 NodeStressPath node_stress_path(const Model& model, const Vector& at_zero, const Vector& per_unit);
+// node_stress_path at the listed nodes only, the same numbers bit for bit; the other
+// nodes' entries are NaN.
+NodeStressPath node_stress_path_at(const Model& model, const Vector& at_zero,
+                                   const Vector& per_unit, const std::vector<std::int64_t>& nodes);
+
+// Per node, a bound B on how far its stress can move with the displacement under the
+// small-kinematics law: for any change du of the displacement, with the same intact
+// bonds and supports, the change of the node's stress tensor (in 2-D its x-z part) has a
+// Frobenius norm of at most B max|du|, every bond counted as intact. So the traction on
+// any plane (in 2-D: any plane whose normal lies in the section), and its normal and
+// shear parts, move by at most that much too.
+std::vector<double> node_stress_bounds(const Model& model);
 
 }  // namespace latfrac
