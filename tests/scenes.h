@@ -36,9 +36,10 @@ inline Strength strength_of(Criterion criterion, double sigma0, double friction_
 // Runs the fracture of a model built from `scene` (and changed by the caller, which is what
 // run_scene cannot do), holding what the pre-cuts cut loose first. `integrated`: follow
 // the paths with CVODE and KINSOL even for a linear law. `screened`: whether event-driven
-// crossing searches may be screened (path_screen.h); `screened_searches` gets how many were.
+// crossing searches may be screened (path_screen.h); `searches` gets how many were, and
+// how many were made in full beside them.
 inline RunResult run_model(Model& model, const Scene& scene, bool integrated = false,
-                           bool screened = true, std::int64_t* screened_searches = nullptr) {
+                           bool screened = true, std::int64_t (*searches)[2] = nullptr) {
   prepare_supports(model, scene.source_path);
   EquilibriumSolver solver(model, scene.solver);
   ProgressLine progress(false);
@@ -49,7 +50,10 @@ inline RunResult run_model(Model& model, const Scene& scene, bool integrated = f
   fracture.use_integrated_path(integrated);
   fracture.screen_paths(screened);
   fracture.run();
-  if (screened_searches) *screened_searches = fracture.screened_searches();
+  if (searches) {
+    (*searches)[0] = fracture.screened_searches();
+    (*searches)[1] = fracture.full_searches();
+  }
   return result;
 }
 

@@ -221,7 +221,10 @@ void FractureRun::event_driven() {
       });
   breaking_.between_groups(nullptr);
   breaking_.screen(nullptr);
-  if (screen) screened_searches_ = screen->screened_searches();
+  if (screen) {
+    screened_searches_ = screen->screened_searches();
+    full_searches_ = screen->full_searches();
+  }
   snapshots_.take_until(schedule_.total, true, [&](double at) { take_snapshot(at); });
 }
 

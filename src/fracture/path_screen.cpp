@@ -56,6 +56,7 @@ void PathScreen::set_reference(const FullPath& full, const PathStresses& stresse
   sign_ = sign;
   breaks_ = breaks;
   valid_ = true;
+  ++full_;
 }
 
 std::optional<PathCrossing> PathScreen::next_break(const FullPath& full, double from, double to,

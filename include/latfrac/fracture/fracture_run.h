@@ -52,8 +52,10 @@ class FractureRun {
   // Search every event-driven path in full (on: screened where it applies, the default;
   // path_screen.h). The events are the same either way: for comparing the two.
   void screen_paths(bool on) { screen_paths_ = on; }
-  // Of the event-driven crossing searches, how many the screen answered (0 without it).
+  // Of the event-driven crossing searches on the current path, how many the screen
+  // answered and how many were made in full beside it (both 0 without it).
   std::int64_t screened_searches() const { return screened_searches_; }
+  std::int64_t full_searches() const { return full_searches_; }
 
   // What the run counted, the solver's work included.
   RunCounters counters() const;
@@ -84,7 +86,7 @@ class FractureRun {
   SnapshotSchedule snapshots_;
   bool integrated_ = false;
   bool screen_paths_ = true;
-  std::int64_t screened_searches_ = 0;
+  std::int64_t screened_searches_ = 0, full_searches_ = 0;
   RunControl* control_ = nullptr;
   const RunCheckpoint* resumed_ = nullptr;  // set by resume_from until run() starts
   RunCounters resumed_counts_;              // the solver's counts before the resume
