@@ -63,6 +63,15 @@ std::size_t pieces_end(const std::vector<FacePiece>& pieces, std::size_t first) 
   return last;
 }
 
+// Node n's first face piece (they are in node order), or pieces.size() when it has none.
+std::size_t first_piece(const std::vector<FacePiece>& pieces, std::int64_t n) {
+  const auto first = static_cast<std::size_t>(
+      std::lower_bound(pieces.begin(), pieces.end(), n,
+                       [](const FacePiece& p, std::int64_t node) { return p.node < node; }) -
+      pieces.begin());
+  return first < pieces.size() && pieces[first].node == n ? first : pieces.size();
+}
+
 // The supports' dyads of every face node (add_node_support_dyads).
 void add_support_dyads(const Model& model, const std::vector<Vec3>& bond_force, bool with_loads,
                        std::vector<Mat3>& sum) {
@@ -284,11 +293,8 @@ std::vector<double> node_stresses_at(const Model& model, const Vector& displacem
               [&](std::size_t, std::int64_t b) {
                 return tension_of(model.bond_law(), model, b, displacement, true);
               });
-    const auto first = static_cast<std::size_t>(
-        std::lower_bound(pieces.begin(), pieces.end(), n,
-                         [](const FacePiece& p, std::int64_t node) { return p.node < node; }) -
-        pieces.begin());
-    if (first < pieces.size() && pieces[first].node == n)
+    const std::size_t first = first_piece(pieces, n);
+    if (first < pieces.size())
       add_node_support_dyads(model, first, pieces_end(pieces, first), force, true, sum);
     voigt_of(model, n, sum, true, &voigt[n * 6]);
   }
@@ -318,11 +324,8 @@ NodeStressPath node_stress_path_at(const Model& model, const Vector& at_zero,
                   return f == 0 ? tension_of(law, model, b, at_zero, true)
                                 : tension_of(law, model, b, per_unit, false);
                 });
-      const auto first = static_cast<std::size_t>(
-          std::lower_bound(pieces.begin(), pieces.end(), n,
-                           [](const FacePiece& p, std::int64_t node) { return p.node < node; }) -
-          pieces.begin());
-      if (first < pieces.size() && pieces[first].node == n) {
+      const std::size_t first = first_piece(pieces, n);
+      if (first < pieces.size()) {
         const std::size_t last = pieces_end(pieces, first);
         add_node_support_dyads(model, first, last, force[0], true, sum[0]);
         add_node_support_dyads(model, first, last, force[1], false, sum[1]);
