@@ -101,7 +101,6 @@ std::optional<PathCrossing> PathScreen::next_break(const FullPath& full, double 
   if (static_cast<double>(searched.size()) > most_left * static_cast<double>(intact))
     return std::nullopt;
   ++screened_;
-  searched_ += static_cast<std::int64_t>(searched.size());
   if (searched.empty()) return PathCrossing{};
   std::vector<std::int64_t> nodes;
   nodes.reserve(2 * searched.size());

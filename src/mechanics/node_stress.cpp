@@ -6,6 +6,8 @@
 #include <cmath>
 #include <initializer_list>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "latfrac/base/error.h"
 #include "latfrac/base/phase_times.h"
@@ -266,6 +268,41 @@ std::vector<double> voigt_stresses(const Model& model, DyadSums& field, bool wit
   return voigt;
 }
 
+// The listed nodes' Voigt stresses for each field (its displacement, and whether it is a
+// state, read with the loads, or a rate), each summed over the node's own bonds: the
+// sweep's numbers bit for bit. The other nodes' entries are NaN.
+std::vector<std::vector<double>> stresses_at(
+    const Model& model, const std::vector<std::int64_t>& nodes,
+    std::initializer_list<std::pair<const Vector*, bool>> fields) {
+  const std::vector<std::pair<const Vector*, bool>> field(fields);
+  const std::size_t count = field.size();
+  if (count > 2) throw Error("stresses_at: at most two fields");
+  const Lattice& lattice = model.lattice;
+  std::vector<std::vector<double>> voigt(
+      count,
+      std::vector<double>(lattice.node_count() * 6, std::numeric_limits<double>::quiet_NaN()));
+  const NodeBonds& index = model.node_bonds();
+  const auto& pieces = lattice.face_pieces;
+  with_bond_law(model, [&](const auto& law) {
+    for (const std::int64_t n : nodes) {
+      Mat3 sum[2];
+      Vec3 force[2];
+      node_sums(model, index, n, count, sum, pieces.empty() ? nullptr : force,
+                [&](std::size_t f, std::int64_t b) {
+                  return tension_of(law, model, b, *field[f].first, field[f].second);
+                });
+      const std::size_t first = first_piece(pieces, n);
+      for (std::size_t f = 0; f < count; ++f) {
+        if (first < pieces.size())
+          add_node_support_dyads(model, first, pieces_end(pieces, first), force[f], field[f].second,
+                                 sum[f]);
+        voigt_of(model, n, sum[f], field[f].second, &voigt[f][n * 6]);
+      }
+    }
+  });
+  return voigt;
+}
+
 std::vector<double> stresses(const Model& model, const Vector& displacement, bool with_loads) {
   DyadSums field(model, displacement, with_loads, !model.lattice.face_pieces.empty());
   sum_dyads(model, {&field});
@@ -282,23 +319,7 @@ std::vector<double> node_stresses(const Model& model, const Vector& displacement
 std::vector<double> node_stresses_at(const Model& model, const Vector& displacement,
                                      const std::vector<std::int64_t>& nodes) {
   const ScopedPhase phase(Phase::node_stress);
-  const Lattice& lattice = model.lattice;
-  std::vector<double> voigt(lattice.node_count() * 6, std::numeric_limits<double>::quiet_NaN());
-  const NodeBonds& index = model.node_bonds();
-  const auto& pieces = lattice.face_pieces;
-  for (const std::int64_t n : nodes) {
-    Mat3 sum;
-    Vec3 force;
-    node_sums(model, index, n, 1, &sum, pieces.empty() ? nullptr : &force,
-              [&](std::size_t, std::int64_t b) {
-                return tension_of(model.bond_law(), model, b, displacement, true);
-              });
-    const std::size_t first = first_piece(pieces, n);
-    if (first < pieces.size())
-      add_node_support_dyads(model, first, pieces_end(pieces, first), force, true, sum);
-    voigt_of(model, n, sum, true, &voigt[n * 6]);
-  }
-  return voigt;
+  return std::move(stresses_at(model, nodes, {{&displacement, true}}).front());
 }
 
 std::vector<double> node_stress_rates(const Model& model, const Vector& direction) {
@@ -309,32 +330,9 @@ std::vector<double> node_stress_rates(const Model& model, const Vector& directio
 NodeStressPath node_stress_path_at(const Model& model, const Vector& at_zero,
                                    const Vector& per_unit, const std::vector<std::int64_t>& nodes) {
   const ScopedPhase phase(Phase::node_stress);
-  const Lattice& lattice = model.lattice;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  NodeStressPath path{std::vector<double>(lattice.node_count() * 6, nan),
-                      std::vector<double>(lattice.node_count() * 6, nan)};
-  const NodeBonds& index = model.node_bonds();
-  const auto& pieces = lattice.face_pieces;
-  with_bond_law(model, [&](const auto& law) {
-    for (const std::int64_t n : nodes) {
-      Mat3 sum[2];
-      Vec3 force[2];
-      node_sums(model, index, n, 2, sum, pieces.empty() ? nullptr : force,
-                [&](std::size_t f, std::int64_t b) {
-                  return f == 0 ? tension_of(law, model, b, at_zero, true)
-                                : tension_of(law, model, b, per_unit, false);
-                });
-      const std::size_t first = first_piece(pieces, n);
-      if (first < pieces.size()) {
-        const std::size_t last = pieces_end(pieces, first);
-        add_node_support_dyads(model, first, last, force[0], true, sum[0]);
-        add_node_support_dyads(model, first, last, force[1], false, sum[1]);
-      }
-      voigt_of(model, n, sum[0], true, &path.at_zero[n * 6]);
-      voigt_of(model, n, sum[1], false, &path.per_unit[n * 6]);
-    }
-  });
-  return path;
+  std::vector<std::vector<double>> both =
+      stresses_at(model, nodes, {{&at_zero, true}, {&per_unit, false}});
+  return {std::move(both[0]), std::move(both[1])};
 }
 
 std::vector<double> node_stress_bounds(const Model& model) {

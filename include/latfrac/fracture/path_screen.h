@@ -51,10 +51,8 @@ class PathScreen {
   void set_reference(const FullPath& full, const PathStresses& stresses, double sign,
                      std::int64_t breaks);
 
-  // Counts: searches answered by the screen, bonds searched exactly there, and searches
-  // made in full (set_reference).
+  // Counts: searches answered by the screen, and searches made in full (set_reference).
   std::int64_t screened_searches() const { return screened_; }
-  std::int64_t bonds_searched() const { return searched_; }
   std::int64_t full_searches() const { return full_; }
 
   // More bonds left than this share of the intact ones: the full search instead. Chosen,
@@ -72,7 +70,7 @@ class PathScreen {
   std::vector<std::int64_t> free_index_;  // the dof map of the reference
   Vector at_zero_, per_lambda_;           // the reference's full displacement
   std::vector<AffineBondStress> stress_;  // per bond, along the reference (in s)
-  std::int64_t screened_ = 0, searched_ = 0, full_ = 0;
+  std::int64_t screened_ = 0, full_ = 0;
 };
 
 }  // namespace latfrac
