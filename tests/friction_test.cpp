@@ -739,3 +739,65 @@ TEST_CASE(
   const Model model = build_model(scene);
   CHECK(model.shear_stiffness[0] > 0);
 }
+
+TEST_CASE(
+    "Friction law: a sliding contact's factor terms plus its coupling are the derivative of "
+    "its force, and the factor's terms are those of sticking",
+    "[friction]") {
+  // The factor holds the symmetric terms; the Woodbury correction adds the coupling. Their
+  // sum must be the tangent of the force the residual checks (tension()), found here by
+  // central differences (the force is affine in du in each state, so the differences are
+  // exact to rounding). Stick and slip have the same symmetric terms: a switch between
+  // them changes the coupling only, never the factor (docs/model.md, section 8, Solver).
+  // 2-D; 3-D's polygonal cone pushed across a facet and towards a corner (an edge: the
+  // factor holds kn n0 n0' only).
+  const int facets = GENERATE(0, 8);
+  const bool corner = GENERATE(false, true);
+  if (facets == 0 && corner) return;
+  INFO((facets == 0 ? "2-D" : corner ? "3-D, towards a corner" : "3-D, across a facet"));
+  const FrictionalContactLaw law(1.0, 0.6, facets);
+  const Vec3 n = facets == 0 ? Vec3(0.6, 0, 0.8) : Vec3(0.48, 0.6, 0.64);
+  const double kn = 2e9, ks = 7e8;
+  const ContactMemory none;
+  const PairSprings fresh{n, 1.0, kn, ks, &none};
+  // Pressed (dn < 0) and pushed along the contact well past mu |Fn| (in 3-D between two
+  // corners: across facet 0); sliding at corner 0 (t1) is set by hand.
+  const auto [t1, t2] = FrictionalContactLaw::frame_of(n);
+  const double half = facets > 0 ? std::numbers::pi / facets : 0;
+  const Vec3 push =
+      facets == 0 ? Vec3(-0.8, 0, 0.6) : Vec3(std::cos(half) * t1 + std::sin(half) * t2);
+  const Vec3 du = -1e-3 * n + 5e-3 * push;
+  const PairTarget target = corner ? PairTarget{PairState::slip_edge, t1}
+                                   : law.settled_state(fresh, PairState::closed, du);
+  REQUIRE(slides(target.state));
+  ContactMemory memory = law.entered(fresh, PairState::closed, target.state, du, target.direction);
+  if (corner) memory.slip_direction = t1;
+  const PairSprings pair{n, 1.0, kn, ks, &memory};
+  REQUIRE(memory.slip_direction.norm() > 0);
+
+  const std::vector<RankOneTerm> stick = law.stiffness_terms(pair, PairState::closed);
+  const std::vector<RankOneTerm> slip = law.stiffness_terms(pair, target.state);
+  if (target.state == PairState::slip) {  // a facet in 3-D, the one sense in 2-D
+    REQUIRE(slip.size() == stick.size());
+    for (std::size_t k = 0; k < stick.size(); ++k) {
+      CHECK(slip[k].weight == stick[k].weight);
+      CHECK(slip[k].direction == stick[k].direction);
+    }
+  }
+  Mat3 terms = Mat3::Zero();
+  for (const RankOneTerm& t : slip) terms += t.weight * t.direction * t.direction.transpose();
+  for (const CouplingTerm& c : law.coupling_terms(pair, target.state))
+    terms += c.weight * c.left * c.right.transpose();
+  const std::vector<int> axes = facets == 0 ? std::vector<int>{0, 2} : std::vector<int>{0, 1, 2};
+  const double h = 1e-4;
+  for (const int a : axes) {
+    const Vec3 step = h * Vec3::Unit(a);
+    const Vec3 derivative =
+        (law.tension(pair, target.state, du + step) - law.tension(pair, target.state, du - step)) /
+        (2 * h);
+    for (const int b : axes) {
+      INFO("row " << b << ", column " << a);
+      CHECK(terms(b, a) == Approx(derivative[b]).margin(1e-6 * kn));
+    }
+  }
+}

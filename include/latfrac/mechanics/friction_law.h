@@ -8,8 +8,9 @@
 //   closed: sticks: t_force = kn dn n0 + ks (P du - a), P = I - n0 n0' (a linear law with
 //           a constant term -ks a: the anchored spring is a load).
 //   slip:   slides along s: t_force = kn dn n0 + mu kn (-dn) s. Its tangent
-//           kn n0 n0' - mu kn s n0' is nonsymmetric; the factor holds kn n0 n0' and the
-//           solver adds the rest (coupling_terms; solvers/equilibrium.h).
+//           kn n0 n0' - mu kn s n0' is nonsymmetric; the factor holds the stick stiffness
+//           kn n0 n0' + ks t t' (so stick and slip share it) and the solver adds the rest,
+//           -s (ks s + mu kn n0)' (coupling_terms; solvers/equilibrium.h).
 // Switches (events on an affine path, where every quantity below is affine in lambda):
 //   open -> closed   where dn falls through 0; the anchor is set there (a = P du: the
 //                    tangential spring starts unstretched);

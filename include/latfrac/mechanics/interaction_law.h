@@ -79,7 +79,8 @@ class InteractionLaw {
   virtual ~InteractionLaw() = default;
   virtual Vec3 tension(const PairSprings& pair, PairState state, const Vec3& du) const = 0;
   // The symmetric stiffness block the assembly factorizes: dt/d(du) when that is
-  // symmetric, its symmetric part otherwise.
+  // symmetric; otherwise a symmetric block that coupling_terms() corrects to dt/d(du)
+  // (a sliding contact keeps its stick stiffness here).
   virtual Mat3 tangent(const PairSprings& pair, PairState state, const Vec3& du) const = 0;
   // dt/d(du) exactly (nonsymmetric for large kinematics).
   virtual Mat3 jacobian(const PairSprings& pair, PairState state, const Vec3& du) const {
