@@ -749,8 +749,8 @@ TEST_CASE(
   // central differences (the force is affine in du in each state, so the differences are
   // exact to rounding). Stick and slip have the same symmetric terms: a switch between
   // them changes the coupling only, never the factor (docs/model.md, section 8, Solver).
-  // 2-D; 3-D's polygonal cone pushed across a facet and towards a corner (an edge: the
-  // factor holds kn n0 n0' only).
+  // 2-D; 3-D's polygonal cone pushed across a facet, and sliding at a corner (its edge:
+  // two coupling terms).
   const int facets = GENERATE(0, 8);
   const bool corner = GENERATE(false, true);
   if (facets == 0 && corner) return;
@@ -777,7 +777,7 @@ TEST_CASE(
 
   const std::vector<RankOneTerm> stick = law.stiffness_terms(pair, PairState::closed);
   const std::vector<RankOneTerm> slip = law.stiffness_terms(pair, target.state);
-  if (target.state == PairState::slip) {  // a facet in 3-D, the one sense in 2-D
+  {  // a facet or a corner in 3-D, the one sense in 2-D
     REQUIRE(slip.size() == stick.size());
     for (std::size_t k = 0; k < stick.size(); ++k) {
       CHECK(slip[k].weight == stick[k].weight);

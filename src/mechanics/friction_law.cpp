@@ -122,9 +122,8 @@ Vec3 FrictionalContactLaw::tension(const PairSprings& pair, PairState state, con
 
 Mat3 FrictionalContactLaw::tangent(const PairSprings& pair, PairState state, const Vec3&) const {
   const Mat3 normal = pair.direction * pair.direction.transpose();
-  if (state == PairState::closed || state == PairState::slip)
+  if (state == PairState::closed || slides(state))
     return pair.kn * normal + pair.ks * (Mat3::Identity() - normal);
-  if (slides(state)) return pair.kn * normal;
   return Mat3::Zero();
 }
 
@@ -138,14 +137,13 @@ Mat3 FrictionalContactLaw::jacobian(const PairSprings& pair, PairState state,
 
 std::vector<RankOneTerm> FrictionalContactLaw::stiffness_terms(const PairSprings& pair,
                                                                PairState state) const {
-  if (facets_ > 0 && (state == PairState::closed || state == PairState::slip)) {
+  if (facets_ > 0 && (state == PairState::closed || slides(state))) {
     const auto [t1, t2] = frame_of(pair.direction);
     return {{pair.kn, pair.direction}, {pair.ks, t1}, {pair.ks, t2}};
   }
   // 2-D: a sliding contact keeps the stick spring too (coupling_terms takes it back).
   if (state == PairState::closed || state == PairState::slip)
     return {{pair.kn, pair.direction}, {pair.ks, tangent_of(pair.direction)}};
-  if (slides(state)) return {{pair.kn, pair.direction}};  // 3-D's slip_edge
   return {};
 }
 
@@ -159,13 +157,14 @@ std::vector<CouplingTerm> FrictionalContactLaw::coupling_terms(const PairSprings
     const Vec3 r = pair.ks * m + cos_half_ * friction_ * pair.kn * pair.direction;
     return {{-r.norm(), m, r.normalized()}};
   }
-  if (facets_ == 0) {
-    // 2-D: -s (ks s + mu kn n0)', the slip's tangent less the stick spring the factor
-    // holds (ks t t' = ks s s', s = +-t).
-    const Vec3 r = pair.ks * s + friction_ * pair.kn * pair.direction;
-    return {{-r.norm(), s, r.normalized()}};
-  }
-  return {{-friction_ * pair.kn, s, pair.direction}};  // 3-D's slip_edge: the factor holds kn only
+  // -s (ks s + mu kn n0)': the slip's tangent less the stick spring the factor holds along
+  // s (2-D: ks t t' = ks s s', s = +-t).
+  const Vec3 r = pair.ks * s + friction_ * pair.kn * pair.direction;
+  if (facets_ == 0) return {{-r.norm(), s, r.normalized()}};
+  // 3-D's edge: s = w_i, the corner's unit direction; the factor also holds ks e e' across
+  // it (e = n0 x w_i), which the second term takes back. Two columns of W.
+  const Vec3 e = pair.direction.cross(s).normalized();
+  return {{-r.norm(), s, r.normalized()}, {-pair.ks, e, e}};
 }
 
 PairTarget FrictionalContactLaw::settled_state(const PairSprings& pair, PairState state,

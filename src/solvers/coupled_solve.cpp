@@ -80,16 +80,20 @@ LinearBackend::Column changed_entries(const Vector& now, const Vector& before) {
 }  // namespace
 
 const EquilibriumSolver::FollowedSolves& EquilibriumSolver::followed_solves(
-    const std::vector<std::int64_t>& slipping, std::int64_t n, bool with_path) {
-  const auto k = static_cast<Eigen::Index>(slipping.size());
-  std::vector<std::vector<double>> terms(slipping.size());  // W's key
-  for (std::size_t c = 0; c < slipping.size(); ++c) {
-    const std::int64_t bond = slipping[c];
+    const std::vector<std::int64_t>& pairs, std::int64_t n, bool with_path) {
+  // W has a column per coupling term: a contact with two terms (3-D's edge of the cone)
+  // has two, each with the contact's bond. `slipping` is each column's bond.
+  std::vector<std::int64_t> slipping;
+  std::vector<std::vector<double>> terms;  // W's key: each column's term, flattened
+  for (const std::int64_t bond : pairs) {
     for (const CouplingTerm& t :
-         model_.law_of(bond)->coupling_terms(model_.springs(bond), model_.state(bond)))
-      terms[c].insert(terms[c].end(), {t.weight, t.left.x(), t.left.y(), t.left.z(),
-                                       t.right.x(), t.right.y(), t.right.z()});
+         model_.law_of(bond)->coupling_terms(model_.springs(bond), model_.state(bond))) {
+      slipping.push_back(bond);
+      terms.push_back(
+          {t.weight, t.left.x(), t.left.y(), t.left.z(), t.right.x(), t.right.y(), t.right.z()});
+    }
   }
+  const auto k = static_cast<Eigen::Index>(slipping.size());
   if (with_path) update_loads();
   FollowedSolves& cache = followed_;
   const std::uint64_t version = factor_->version();

@@ -250,8 +250,8 @@ class EquilibriumSolver {
   // anchor) add A^-1 of their change, which has a few entries too.
   struct FollowedSolves {
     std::uint64_t factor_version = 0;  // the factor the solves belong to
-    std::vector<std::int64_t> bonds;   // W: the slipping contacts (none: no columns)
-    std::vector<std::vector<double>> terms;  // each contact's coupling terms, flattened
+    std::vector<std::int64_t> bonds;   // W: each column's slipping contact (none: no columns)
+    std::vector<std::vector<double>> terms;  // each column's coupling term, flattened
     Eigen::MatrixXd w;
     std::vector<LinearBackend::Column> v;
     Eigen::PartialPivLU<Eigen::MatrixXd> capacitance;
@@ -263,11 +263,11 @@ class EquilibriumSolver {
     bool valid = false;
   };
   FollowedSolves followed_;
-  // The followed solves brought to the factor, W for these slipping contacts (its columns
-  // kept where the coupling terms are the same, the others solved) and, with_path, Y for
-  // the present loads.
-  const FollowedSolves& followed_solves(const std::vector<std::int64_t>& slipping,
-                                        std::int64_t n, bool with_path);
+  // The followed solves brought to the factor, W for these slipping contacts (a column per
+  // coupling term; its columns kept where the terms are the same, the others solved) and,
+  // with_path, Y for the present loads.
+  const FollowedSolves& followed_solves(const std::vector<std::int64_t>& pairs, std::int64_t n,
+                                        bool with_path);
   // The factor was just updated by +- C C' (`columns`): the followed solves keep C for
   // later, or are dropped when they do not belong to the factor just before, or when C
   // has grown to as many columns as W and to more than 4 (one pass over the factor; then
@@ -275,7 +275,8 @@ class EquilibriumSolver {
   void follow_factor_update(const std::vector<LinearBackend::Column>& columns, bool downdate);
   // V and the capacitance from the followed solves' bonds, terms and W.
   void finish_woodbury(FollowedSolves& cache) const;
-  // A slipping contact's column of U (left) or V from its flattened coupling terms.
+  // A column of U (left) or V from a slipping contact's flattened coupling term (the sum,
+  // given several).
   LinearBackend::Column coupling_column(std::int64_t bond, const std::vector<double>& terms,
                                         bool left) const;
   // UMFPACK's iterative refinement (up to 2 steps, each a residual and a solve), on only
