@@ -235,17 +235,16 @@ const EquilibriumSolver::FollowedSolves& EquilibriumSolver::followed_solves(
   return cache;
 }
 
-// The flattened terms are 7 values each: the weight w, then a, then b (U gets w a, V b).
+// The flattened term is 7 values: the weight w, then a, then b (U gets w a, V b).
 LinearBackend::Column EquilibriumSolver::coupling_column(std::int64_t bond,
-                                                         const std::vector<double>& terms,
+                                                         const std::vector<double>& term,
                                                          bool left) const {
+  if (term.size() != 7) throw Error("a Woodbury column needs one coupling term (7 values)");
   LinearBackend::Column column;
-  for (std::size_t q = 0; q + 6 < terms.size(); q += 7) {
-    if (left)
-      append_on_bond(bond, terms[q] * Vec3(terms[q + 1], terms[q + 2], terms[q + 3]), column);
-    else
-      append_on_bond(bond, Vec3(terms[q + 4], terms[q + 5], terms[q + 6]), column);
-  }
+  if (left)
+    append_on_bond(bond, term[0] * Vec3(term[1], term[2], term[3]), column);
+  else
+    append_on_bond(bond, Vec3(term[4], term[5], term[6]), column);
   return column;
 }
 

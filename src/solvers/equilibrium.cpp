@@ -179,9 +179,14 @@ void EquilibriumSolver::rebuild_followed(const History& history) {
   const std::size_t k = history.woodbury_bonds.size();
   const std::int64_t n = model_.dofs().free_count;
   std::size_t values = 0;
-  for (std::int64_t count : history.woodbury_term_counts) values += static_cast<std::size_t>(count);
+  bool one_term_each = true;  // a column of W per coupling term (7 values)
+  for (std::int64_t count : history.woodbury_term_counts) {
+    values += static_cast<std::size_t>(count);
+    one_term_each = one_term_each && count == 7;
+  }
   const std::size_t columns = history.woodbury_pending_sign.size();
-  if (history.woodbury_term_counts.size() != k || history.woodbury_terms.size() != values ||
+  if (!one_term_each || history.woodbury_term_counts.size() != k ||
+      history.woodbury_terms.size() != values ||
       history.woodbury_w.size() != k * static_cast<std::size_t>(n) ||
       history.woodbury_pending_start.size() != columns + 1 ||
       history.woodbury_pending_index.size() != history.woodbury_pending_value.size() ||

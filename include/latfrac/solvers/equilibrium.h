@@ -275,8 +275,7 @@ class EquilibriumSolver {
   void follow_factor_update(const std::vector<LinearBackend::Column>& columns, bool downdate);
   // V and the capacitance from the followed solves' bonds, terms and W.
   void finish_woodbury(FollowedSolves& cache) const;
-  // A column of U (left) or V from a slipping contact's flattened coupling term (the sum,
-  // given several).
+  // A column of U (left) or V from one flattened coupling term of a slipping contact.
   LinearBackend::Column coupling_column(std::int64_t bond, const std::vector<double>& terms,
                                         bool left) const;
   // UMFPACK's iterative refinement (up to 2 steps, each a residual and a solve), on only
