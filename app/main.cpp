@@ -399,14 +399,15 @@ int analyze_command(const std::string& path, bool json, double lambda) {
     const std::string faults = report ? to_json(*report) : "null";
     const RunSummary& s = result.summary;
     std::printf(
-        "{\"name\": \"%s\", \"model\": \"%s\", \"dim\": %d, \"nodes\": %zu, \"bonds\": %zu, "
-        "\"breaks\": %lld, "
+        "{\"name\": \"%s\", \"model\": \"%s\", \"complete\": %s, \"dim\": %d, \"nodes\": %zu, "
+        "\"bonds\": %zu, \"breaks\": %lld, "
         "\"final_lambda\": %.17g, \"wall_seconds\": %.6g, \"solves\": %lld, \"factorizations\": "
         "%lld, "
         "\"factor_updates\": %lld, \"snapshots\": %zu, \"faults\": %s}\n",
-        result.scene.name.c_str(), result.scene.model.c_str(), result.scene.dim,
-        result.node_count(), result.bond_count(), static_cast<long long>(s.breaks), s.final_lambda,
-        s.wall_seconds, static_cast<long long>(s.solves), static_cast<long long>(s.factorizations),
+        result.scene.name.c_str(), result.scene.model.c_str(), s.complete ? "true" : "false",
+        result.scene.dim, result.node_count(), result.bond_count(),
+        static_cast<long long>(s.breaks), s.final_lambda, s.wall_seconds,
+        static_cast<long long>(s.solves), static_cast<long long>(s.factorizations),
         static_cast<long long>(s.factor_updates), result.snapshots.size(), faults.c_str());
     return 0;
   }

@@ -314,6 +314,9 @@ TEST_CASE("Overrides (--set) are applied and then validated", "[io]") {
              StartsWith("--set strength.criterion: strength.sigma0: missing required key"));
   CHECK_THAT(error_of(minimal, {"lattice.spacing=abc"}),
              StartsWith("--set lattice.spacing: lattice.spacing: expected a number, got a string"));
+  // An integer beyond 64 bits is a number TOML cannot hold, not a string.
+  CHECK_THAT(error_of(minimal, {"lattice.seed=9223372036854775808"}),
+             StartsWith("--set lattice.seed: 9223372036854775808 is not a number TOML can hold"));
 }
 
 TEST_CASE("a malformed --set override is an input error", "[io]") {

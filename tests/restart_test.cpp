@@ -1,9 +1,14 @@
 // Tests of checkpoints and resume: a run stopped anywhere between events (or between the
 // groups of a cascade) and resumed from its result file gives the uninterrupted run's
 // events, bit for bit (the spec asks for lambdas to 1e-12 relative).
+#include <hdf5.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
+#include <functional>
 #include <random>
+#include <vector>
 
 #include "latfrac/base/error.h"
 #include "latfrac/io/problem_file.h"
@@ -212,6 +217,88 @@ TEST_CASE("a checkpoint's file is an incomplete result readers can use", "[resta
   write_result_file(path, whole);
   CHECK(read_result_file(path).summary.complete);
   CHECK_THROWS_AS(read_checkpoint(path), InputError);
+}
+
+// Rewrites a checkpoint value through HDF5 (so the checksums stay valid): what an edit,
+// or damage that a checksum cannot see, would leave.
+void set_checkpoint_attribute(const std::string& path, const char* name, hid_t type,
+                              const void* value) {
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  REQUIRE(file >= 0);
+  const hid_t group = H5Gopen2(file, "/checkpoint", H5P_DEFAULT);
+  REQUIRE(group >= 0);
+  const hid_t attribute = H5Aopen(group, name, H5P_DEFAULT);
+  REQUIRE(attribute >= 0);
+  REQUIRE(H5Awrite(attribute, type, value) >= 0);
+  H5Aclose(attribute);
+  H5Gclose(group);
+  REQUIRE(H5Fclose(file) >= 0);
+}
+
+template <class T>
+void edit_checkpoint_dataset(const std::string& path, const char* name, hid_t type,
+                             const std::function<void(std::vector<T>&)>& edit) {
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  REQUIRE(file >= 0);
+  const hid_t dataset = H5Dopen2(file, name, H5P_DEFAULT);
+  REQUIRE(dataset >= 0);
+  const hid_t space = H5Dget_space(dataset);
+  std::vector<T> values(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+  H5Sclose(space);
+  REQUIRE(H5Dread(dataset, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0);
+  edit(values);
+  REQUIRE(H5Dwrite(dataset, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) >= 0);
+  H5Dclose(dataset);
+  REQUIRE(H5Fclose(file) >= 0);
+}
+
+TEST_CASE("a checkpoint that does not fit its run is refused, not resumed", "[restart]") {
+  // Each edit used to crash the resume (an index out of range) or let it write a file
+  // that said complete without the breaks or snapshots it lacked.
+  ScratchDirectory scratch;
+  const std::string path = scratch.file("run.h5");
+  const Scene scene = shipped("fig6-elliptic-graben-2d.toml",
+                              {"lattice.spacing=3000", "stepping.method=\"event\""});
+  StopAt control(path, 5);
+  REQUIRE_FALSE(run_with(scene, &control, nullptr).summary.complete);
+  auto resume = [&] {
+    ResumePoint point;
+    point.result = read_result_file(path);
+    point.checkpoint = read_checkpoint(path);
+    run_with(scene, nullptr, &point);
+  };
+  using Catch::Contains;
+  SECTION("a free dof numbered out of range") {
+    edit_checkpoint_dataset<std::int64_t>(path, "/checkpoint/free_index", H5T_NATIVE_INT64,
+                                          [](auto& v) {
+                                            for (auto& index : v)
+                                              if (index >= 0) {
+                                                index = 99999999;
+                                                break;
+                                              }
+                                          });
+    CHECK_THROWS_WITH(read_checkpoint(path), Contains("out of order") && Contains("damaged"));
+  }
+  SECTION("a pair state that does not exist") {
+    edit_checkpoint_dataset<std::uint8_t>(path, "/checkpoint/pair_state", H5T_NATIVE_UINT8,
+                                          [](auto& v) { v.front() = 9; });
+    CHECK_THROWS_WITH(read_checkpoint(path), Contains("pair state 9"));
+  }
+  SECTION("more snapshots taken than the file holds") {
+    const std::int64_t taken = 99;
+    set_checkpoint_attribute(path, "snapshots_taken", H5T_NATIVE_INT64, &taken);
+    CHECK_THROWS_WITH(resume(), Contains("snapshots were taken"));
+  }
+  SECTION("a lambda beyond the loading") {
+    const double lambda = 1.0;
+    set_checkpoint_attribute(path, "lambda", H5T_NATIVE_DOUBLE, &lambda);
+    CHECK_THROWS_WITH(resume(), Contains("outside the loading"));
+  }
+  SECTION("a negative count") {
+    const std::int64_t step = -3;
+    set_checkpoint_attribute(path, "next_step", H5T_NATIVE_INT64, &step);
+    CHECK_THROWS_WITH(read_checkpoint(path), Contains("negative count"));
+  }
 }
 
 TEST_CASE("a result file is written by one run at a time", "[restart]") {

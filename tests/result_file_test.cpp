@@ -11,6 +11,7 @@
 #include <iterator>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "latfrac/base/error.h"
 #include "sample_result.h"
@@ -98,6 +99,22 @@ void edit_hdf5(const std::string& path, Edit edit) {
   REQUIRE(H5Fclose(file) >= 0);
 }
 
+// Finds the bytes of `value` in the file (they must occur once) and flips their lowest bit.
+void flip_bit_of(const std::string& path, const void* value, std::size_t size) {
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const std::string pattern(static_cast<const char*>(value), size);
+  const std::size_t at = bytes.find(pattern);
+  REQUIRE(at != std::string::npos);
+  REQUIRE(bytes.find(pattern, at + 1) == std::string::npos);
+  bytes[at] = static_cast<char>(bytes[at] ^ 1);
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << bytes;
+}
+
 }  // namespace
 
 TEST_CASE("a result file reads back exactly what was written", "[io]") {
@@ -113,6 +130,7 @@ TEST_CASE("a result file reads back exactly what was written", "[io]") {
   SECTION("with no bonds") {
     written.bonds.clear();
     written.bond_kind.clear();
+    written.events.clear();  // an event names a bond: without bonds, none
     for (Snapshot& snapshot : written.snapshots) {
       snapshot.bond_intact.clear();
       snapshot.bond_failure_index.clear();
@@ -258,23 +276,60 @@ TEST_CASE("reading something that is not a complete latfrac result says why", "[
     const double marker = 1234.5678901234567;
     result.snapshots[1].displacement[4] = marker;
     write_result_file(path, result);
-    std::string bytes;
-    {
-      std::ifstream in(path, std::ios::binary);
-      bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    }
-    char pattern[sizeof marker];
-    std::memcpy(pattern, &marker, sizeof marker);
-    const std::size_t at = bytes.find(std::string(pattern, sizeof pattern));
-    REQUIRE(at != std::string::npos);
-    REQUIRE(bytes.find(std::string(pattern, sizeof pattern), at + 1) == std::string::npos);
-    bytes[at] = static_cast<char>(bytes[at] ^ 1);
-    {
-      std::ofstream out(path, std::ios::binary | std::ios::trunc);
-      out << bytes;
-    }
+    flip_bit_of(path, &marker, sizeof marker);
     CHECK_THAT(thrown_message<InputError>([&] { read_result_file(path); }),
                Contains("/snapshots/1/displacement") && Contains("damaged"));
+  }
+  SECTION("a result with a flipped bit in an attribute (its object header's checksum fails)") {
+    // The attribute lives in its group's header, which the 1.10 format checksums; in the
+    // format before it, the flipped count read back as another count, silently.
+    RunResult result = sample_result();
+    const std::int64_t marker = 104729104729;
+    result.summary.solves = marker;
+    write_result_file(path, result);
+    flip_bit_of(path, &marker, sizeof marker);
+    CHECK_THAT(thrown_message<InputError>([&] { read_result_file(path); }), Contains("damaged"));
+  }
+  SECTION("a result cut short") {
+    write_result_file(path, sample_result());
+    std::filesystem::resize_file(path, std::filesystem::file_size(path) / 2);
+    CHECK_THAT(thrown_message<InputError>([&] { read_result_file(path); }),
+               Contains("damaged or cut short"));
+  }
+  SECTION("a result whose numbers are stored wider than latfrac writes") {
+    // HDF5 would convert 16-byte integers; a damaged width (524289 bytes) made it run off
+    // its buffers, so a width latfrac never writes is refused before reading.
+    write_result_file(path, sample_result());
+    edit_hdf5(path, [](hid_t file) {
+      REQUIRE(H5Ldelete(file, "/events/bond", H5P_DEFAULT) >= 0);
+      const hsize_t shape[1] = {3};
+      const hid_t space = H5Screate_simple(1, shape, nullptr);
+      const hid_t wide = H5Tcopy(H5T_STD_I64LE);
+      REQUIRE(H5Tset_size(wide, 16) >= 0);
+      const hid_t dataset =
+          H5Dcreate2(file, "/events/bond", wide, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+      REQUIRE(dataset >= 0);
+      H5Dclose(dataset);
+      H5Tclose(wide);
+      H5Sclose(space);
+    });
+    CHECK_THAT(thrown_message<InputError>([&] { read_result_file(path); }),
+               Contains("/events/bond") && Contains("16 bytes"));
+  }
+  SECTION("a result with a break event for a bond the lattice does not have") {
+    const RunResult result = sample_result();
+    write_result_file(path, result);
+    edit_hdf5(path, [&](hid_t file) {
+      const hid_t dataset = H5Dopen2(file, "/events/bond", H5P_DEFAULT);
+      REQUIRE(dataset >= 0);
+      std::vector<std::int64_t> bonds(result.events.size(), 0);
+      bonds.back() = static_cast<std::int64_t>(result.bond_count());
+      REQUIRE(H5Dwrite(dataset, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, bonds.data()) >=
+              0);
+      H5Dclose(dataset);
+    });
+    CHECK_THAT(thrown_message<InputError>([&] { read_result_file(path); }),
+               Contains("break event for bond " + std::to_string(result.bond_count())));
   }
 }
 

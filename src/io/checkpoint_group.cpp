@@ -1,13 +1,17 @@
 // Writing and reading the /checkpoint group: the state a stopped run continues from.
 #include "checkpoint_group.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "hdf5_arrays.h"
 #include "latfrac/base/error.h"
+#include "latfrac/mechanics/pair_state.h"
 
 namespace latfrac {
 namespace {
@@ -160,6 +164,85 @@ void write_checkpoint_group(hid_t file, const RunCheckpoint& c) {
   }
 }
 
+namespace {
+
+// What the checkpoint says of itself must hold before any of it is used: every bond, dof
+// and state named in range, every count non-negative, every lambda finite. A file damaged
+// in a way its checksums cannot see (or edited) is refused here, where it would index
+// out of range on resuming (docs/restart.md).
+void check_checkpoint(const RunCheckpoint& c) {
+  const auto bonds = static_cast<std::int64_t>(c.pair_states.size());
+  auto refuse = [](const std::string& what) {
+    throw InputError("the checkpoint " + what + ": the file is damaged");
+  };
+  auto in_range = [&](const std::vector<std::int64_t>& values, std::int64_t end, const char* name,
+                      const char* of) {
+    for (const std::int64_t v : values)
+      if (v < 0 || v >= end)
+        refuse(std::string("names ") + name + " " + std::to_string(v) + " of " +
+               std::to_string(end) + " " + of);
+  };
+  auto states = [&](const std::vector<std::uint8_t>& values, const char* name) {
+    for (const std::uint8_t v : values)
+      if (v > static_cast<std::uint8_t>(PairState::slip_edge))
+        refuse(std::string("has pair state ") + std::to_string(v) + " in " + name);
+  };
+  states(c.pair_states, "pair_state");
+  states(c.factor.factored_states, "factored_states");
+  states(c.factor.lu_states, "lu_states");
+  std::int64_t next_free = 0;
+  for (const std::int64_t index : c.free_index) {
+    if (index == -1) continue;
+    if (index != next_free) refuse("numbers its free degrees of freedom out of order");
+    ++next_free;
+  }
+  const std::int64_t free = next_free;
+  const auto state_size = static_cast<std::int64_t>(c.free_state.size());
+  if (state_size != 0 && state_size != free)
+    refuse("has " + std::to_string(state_size) + " state values for " + std::to_string(free) +
+           " free degrees of freedom");
+  std::vector<std::int64_t> changed;
+  for (const auto& [bond, state] : c.factor.changes) {
+    changed.push_back(bond);
+    states({state}, "change_state");
+  }
+  in_range(changed, bonds, "bond", "bonds in its changes");
+  in_range(c.factor.lu_change_bonds, bonds, "bond", "bonds in lu_change_bond");
+  in_range(c.factor.woodbury_bonds, bonds, "bond", "bonds in woodbury_bond");
+  in_range(c.switches.stuck_bonds, bonds, "bond", "bonds in stuck_bond");
+  in_range(c.switches.unstable, bonds, "bond", "bonds in unstable_bond");
+  std::vector<std::int64_t> rows;
+  for (const auto& [row, value] : c.factor.pending_forces) rows.push_back(row);
+  in_range(rows, free, "free dof", "in pending_index");
+  in_range(c.factor.woodbury_pending_index, free, "free dof", "in woodbury_pending_index");
+  if (!c.factor.elimination_order.empty()) {
+    in_range(c.factor.elimination_order, free, "free dof", "in elimination_order");
+    std::vector<char> seen(static_cast<std::size_t>(free), 0);
+    for (const std::int64_t v : c.factor.elimination_order) seen[static_cast<std::size_t>(v)] = 1;
+    if (static_cast<std::int64_t>(c.factor.elimination_order.size()) != free ||
+        std::find(seen.begin(), seen.end(), 0) != seen.end())
+      refuse("has an elimination order that is not a permutation of its free dofs");
+  }
+  const auto& starts = c.factor.woodbury_pending_start;
+  for (std::size_t i = 0; i < starts.size(); ++i)
+    if (starts[i] < (i == 0 ? 0 : starts[i - 1]) ||
+        starts[i] > static_cast<std::int64_t>(c.factor.woodbury_pending_index.size()))
+      refuse("has woodbury_pending_start out of order");
+  if (c.factor.solution.size() != 0 && c.factor.solution.size() != free)
+    refuse("has a solution of " + std::to_string(c.factor.solution.size()) + " values for " +
+           std::to_string(free) + " free dofs");
+  if (c.next_step < 0 || c.cascade < -1 || c.snapshots_taken < 0 || c.next_cascade < 0 ||
+      c.fragments_at_start < 0 || c.factor.woodbury_pending_updates < 0)
+    refuse(
+        "has a negative count (next_step, cascade, snapshots_taken, next_cascade, "
+        "fragments_at_start or woodbury_pending_updates)");
+  if (!std::isfinite(c.lambda) || !std::isfinite(c.state_lambda) ||
+      !std::isfinite(c.factor.solution_lambda))
+    refuse("has a lambda that is not a finite number");
+}
+
+}  // namespace
+
 RunCheckpoint read_checkpoint_group(hid_t file) {
   hdf5::require(file, group, "group");
   RunCheckpoint c;
@@ -281,6 +364,7 @@ RunCheckpoint read_checkpoint_group(hid_t file) {
     if (c.switches.stuck_bonds.size() != c.switches.stuck_lambdas.size())
       throw InputError("datasets " + group + "/stuck_bond and stuck_lambda differ in length");
   }
+  check_checkpoint(c);
   return c;
 }
 

@@ -2,6 +2,8 @@
 #include "hdf5_arrays.h"
 
 #include <algorithm>
+#include <cstddef>
+#include <string>
 
 #include "hdf5_handles.h"
 #include "latfrac/base/error.h"
@@ -35,6 +37,15 @@ void require_number_type(hid_t stored_type, const std::string& label) {
   if (type_class != H5T_INTEGER && type_class != H5T_FLOAT) {
     throw InputError(label + " does not hold numbers");
   }
+  // HDF5 converts whatever width the file names; a damaged width (a flipped byte made one
+  // 524289 bytes) made H5Dread run off its buffers instead of failing.
+  const std::size_t size = H5Tget_size(stored_type);
+  if (size == 0) fail("H5Tget_size", label);
+  const bool usual = type_class == H5T_FLOAT ? (size == 4 || size == 8)
+                                             : (size == 1 || size == 2 || size == 4 || size == 8);
+  if (!usual)
+    throw InputError(label + " holds numbers of " + std::to_string(size) +
+                     " bytes, which latfrac never writes: the file is damaged");
 }
 
 Shape extent(hid_t space, const std::string& label) {
@@ -206,6 +217,9 @@ std::string read_string_attribute(hid_t file, const std::string& object, const c
   }
   const std::size_t size = H5Tget_size(stored_type.get());
   if (size == 0) fail("H5Tget_size", label);
+  if (size > (std::size_t{1} << 20))
+    throw InputError(label + " is a string of " + std::to_string(size) +
+                     " bytes, which latfrac never writes: the file is damaged");
   std::string buffer(size + 1, '\0');
   check(H5Tset_size(memory_type.get(), size + 1), "H5Tset_size", label);
   check(H5Aread(attribute.get(), memory_type.get(), buffer.data()), "H5Aread", label);

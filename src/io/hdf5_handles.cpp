@@ -1,9 +1,16 @@
 // RAII ownership of HDF5 identifiers, and HDF5 failures turned into latfrac::Error messages.
 #include "hdf5_handles.h"
 
+#include <cstdint>
+#include <cstring>
 #include <utility>
 
 #include "latfrac/base/error.h"
+
+// HDF5's checksum of its metadata (Jenkins' lookup3), exported by libhdf5 since 1.8.7 but
+// declared only in its private headers.
+extern "C" std::uint32_t H5_checksum_metadata(const void* data, std::size_t len,
+                                              std::uint32_t initval);
 
 namespace latfrac::hdf5 {
 
@@ -54,5 +61,22 @@ QuietErrors::QuietErrors() {
 }
 
 QuietErrors::~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, previous_function_, previous_data_); }
+
+void seal_superblock(std::vector<char>& image) {
+  // Version 2 and 3 superblocks: signature (8 bytes), version, size of offsets, size of
+  // lengths, status flags, then four addresses and the checksum of everything before it.
+  static constexpr char signature[] = "\x89HDF\r\n\x1a\n";
+  if (image.size() < 12 || std::memcmp(image.data(), signature, 8) != 0) return;
+  const auto version = static_cast<unsigned char>(image[8]);
+  if (version < 2) return;
+  const std::size_t end = 12 + 4 * static_cast<std::size_t>(static_cast<unsigned char>(image[9]));
+  if (image.size() < end + 4) return;
+  const std::uint32_t sum = H5_checksum_metadata(image.data(), end, 0);
+  std::uint32_t stored = 0;
+  for (int b = 3; b >= 0; --b)
+    stored = (stored << 8) | static_cast<unsigned char>(image[end + static_cast<std::size_t>(b)]);
+  if (stored == sum) return;
+  for (std::size_t b = 0; b < 4; ++b) image[end + b] = static_cast<char>((sum >> (8 * b)) & 0xff);
+}
 
 }  // namespace latfrac::hdf5

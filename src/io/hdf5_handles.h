@@ -4,6 +4,7 @@
 #include <hdf5.h>
 
 #include <string>
+#include <vector>
 
 namespace latfrac::hdf5 {
 
@@ -59,5 +60,13 @@ class QuietErrors final {
   H5E_auto2_t previous_function_ = nullptr;
   void* previous_data_ = nullptr;
 };
+
+// An image of an open file from H5Fget_file_image, made whole. HDF5 1.10.8 clears the
+// superblock's status flags in the image (version 2 and 3 superblocks: the "open for
+// writing" mark) but leaves the checksum computed with them set, so the image would not
+// open ("incorrect metadata checksum"). The checksum is computed again, with HDF5's own
+// function, when it does not match; an image whose superblock has no checksum (version 0
+// or 1) is left alone.
+void seal_superblock(std::vector<char>& image);
 
 }  // namespace latfrac::hdf5

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <regex>
+#include <string>
 #include <string_view>
 
 #include "latfrac/base/error.h"
@@ -113,7 +115,12 @@ void set_value(toml::table& table, const std::string& key, const std::string& va
       table.insert_or_assign(key, std::move(*parsed.get("value")));
       return;
     }
-  } catch (const toml::parse_error&) {
+  } catch (const toml::parse_error& error) {
+    // A number TOML cannot hold (an integer beyond 64 bits) is not a bare string.
+    static const std::regex number(R"([+-]?[0-9][0-9_]*(\.[0-9_]+)?([eE][+-]?[0-9_]+)?)");
+    if (std::regex_match(value, number))
+      throw InputError(where + ": " + value + " is not a number TOML can hold (" +
+                       std::string(error.description()) + ")");
   }
   table.insert_or_assign(key, value);
 }

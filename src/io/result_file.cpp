@@ -251,6 +251,11 @@ void write_hdf5(const std::string& file_name, const RunResult& result,
     hdf5::check(H5Pset_fclose_degree(access.get(), H5F_CLOSE_SEMI), "H5Pset_fclose_degree", quoted);
     hdf5::check(H5Pset_fapl_core(access.get(), estimated_bytes(result), 0), "H5Pset_fapl_core",
                 quoted);
+    // The 1.8 format: object headers and the superblock carry checksums, so a damaged
+    // attribute (the checkpoint's counters, the provenance) fails to read instead of
+    // reading wrong; any HDF5 since 1.8 (2008), h5py and ParaView read it.
+    hdf5::check(H5Pset_libver_bounds(access.get(), H5F_LIBVER_V110, H5F_LIBVER_V110),
+                "H5Pset_libver_bounds", quoted);
     hdf5::Handle file =
         hdf5::checked(H5Fcreate(file_name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()),
                       H5Fclose, "H5Fcreate", quoted);
@@ -269,6 +274,7 @@ void write_hdf5(const std::string& file_name, const RunResult& result,
     image.resize(static_cast<std::size_t>(size));
     if (H5Fget_file_image(file.get(), image.data(), image.size()) < 0)
       hdf5::fail("H5Fget_file_image", quoted);
+    hdf5::seal_superblock(image);
     file.close("H5Fclose", quoted);
   }
   write_bytes(file_name, image, checkpoint != nullptr);
@@ -309,6 +315,11 @@ SceneInfo read_scene(hid_t file) {
   // Files written before the two models were named have no "model".
   if (hdf5::has_attribute(file, group, "model"))
     scene.model = hdf5::read_string_attribute(file, group, "model");
+  if (scene.dim != 2 && scene.dim != 3)
+    throw InputError("/scene dim is " + std::to_string(scene.dim) + ", not 2 or 3");
+  if (!(scene.spacing > 0))
+    throw InputError("/scene spacing is " + std::to_string(scene.spacing) +
+                     " m, not a positive length");
   return scene;
 }
 
@@ -374,6 +385,13 @@ RunSummary read_summary(hid_t file) {
   // Files written before runs were written as they went are complete.
   summary.complete = !hdf5::has_attribute(file, group, "complete") ||
                      hdf5::read_attribute<std::uint8_t>(file, group, "complete") != 0;
+  for (const std::int64_t count :
+       {summary.breaks, summary.solves, summary.factorizations, summary.factor_updates,
+        summary.contact_cycles, summary.relaxation_sweeps, summary.relaxation_unconverged,
+        summary.floor_acceptances})
+    if (count < 0)
+      throw InputError("/summary holds a negative count (" + std::to_string(count) +
+                       "), which latfrac never writes");
   return summary;
 }
 
@@ -451,7 +469,10 @@ auto read_from(const std::string& path, Read read) {
       throw InputError("result file " + quoted + " is incomplete or damaged: " + error.what());
     }
   } catch (const Error& error) {
-    throw Error("cannot read result file " + quoted + ": " + error.what());
+    // A library call that fails on a file latfrac wrote whole means the file was cut short
+    // or damaged since: the user's input, as the checksums' failures are (exit 2).
+    throw InputError("cannot read result file " + quoted +
+                     " (damaged or cut short?): " + error.what());
   }
 }
 
@@ -464,6 +485,12 @@ RunResult read_result_file(const std::string& path) {
   if (const auto bad = first_non_finite(result))
     throw InputError("'" + path + "' holds " + *bad +
                      ", which latfrac never writes: the file is damaged");
+  // An event for a bond the lattice does not have: every reader refuses it, not only the
+  // fault analysis (render drew the others and said nothing).
+  for (const BreakEvent& event : result.events)
+    if (event.bond < 0 || static_cast<std::size_t>(event.bond) >= result.bond_count())
+      throw InputError("'" + path + "' has a break event for bond " + std::to_string(event.bond) +
+                       " of " + std::to_string(result.bond_count()) + ": the file is damaged");
   return result;
 }
 

@@ -3,6 +3,7 @@
 
 #include <latfrac_version.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -105,6 +106,45 @@ void restore_model(Model& model, const RunCheckpoint& checkpoint, const std::str
   editor.set_dofs(std::move(map));
 }
 
+// The checkpoint against the rest of its file and the problem: where the run stood
+// (lambda, step, snapshots taken, parts held) must be a place this problem's run can
+// stand, and every event must name one of its bonds. Otherwise the resumed run would
+// index out of range, or write a file that says complete without what it lacks.
+void check_resume_point(const ResumePoint& resume, const Schedule& schedule, const Model& model,
+                        const std::string& source) {
+  const RunCheckpoint& c = resume.checkpoint;
+  auto refuse = [&](const std::string& what) {
+    throw InputError(source + ": cannot resume: the checkpoint " + what +
+                     " (the result file is damaged or was edited)");
+  };
+  const std::int64_t bonds = model.lattice.bond_count();
+  for (const BreakEvent& event : resume.result.events)
+    if (event.bond < 0 || event.bond >= bonds)
+      refuse("comes with a break event for bond " + std::to_string(event.bond) + " of " +
+             std::to_string(bonds));
+  const auto taken = static_cast<std::int64_t>(resume.result.snapshots.size());
+  const auto planned =
+      static_cast<std::int64_t>(std::max<std::size_t>(1, schedule.snapshots.size()));
+  if (c.snapshots_taken != taken || c.snapshots_taken > planned)
+    refuse("says " + std::to_string(c.snapshots_taken) + " snapshots were taken; the file holds " +
+           std::to_string(taken) + " of the " + std::to_string(planned) + " planned");
+  if (c.fragments_at_start > static_cast<std::int64_t>(resume.result.fragments.size()))
+    refuse("names more parts held at the start than the file holds");
+  const double sign = schedule.total < 0 ? -1.0 : 1.0;
+  if (sign * c.lambda < 0 || sign * c.lambda > std::abs(schedule.total))
+    refuse("stands at lambda " + std::to_string(c.lambda) + ", outside the loading 0 .. " +
+           std::to_string(schedule.total));
+  if (schedule.stepping.method == SteppingMethod::fixed) {
+    const double increment = schedule.stepping.increment;
+    const std::int64_t steps =
+        schedule.total == 0
+            ? 0
+            : static_cast<std::int64_t>(std::ceil(std::abs(schedule.total) / increment - 1e-9));
+    if (c.next_step > steps + 1)
+      refuse("stands at step " + std::to_string(c.next_step) + " of " + std::to_string(steps));
+  }
+}
+
 }  // namespace
 
 std::vector<std::string> unsupported_effects(const Scene& scene) {
@@ -184,6 +224,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     if (resume->result.positions != result.positions || resume->result.bonds != result.bonds)
       throw InputError(scene.source_path + ": the result file's lattice is not this problem's");
     restore_model(model, resume->checkpoint, scene.source_path);
+    check_resume_point(*resume, schedule_of(scene), model, scene.source_path);
     result.provenance = resume->result.provenance;
     result.events = resume->result.events;
     result.snapshots = resume->result.snapshots;
