@@ -352,7 +352,14 @@ int study_command(const std::string& problem, const std::vector<std::string>& se
   options.command_line = command_line;
   options.run_progress = !quiet;
   if (!quiet) options.on_row = [](const StudyRow& row) { std::cerr << progress_line(row) << "\n"; };
+  install_stop_handlers();  // SIGINT, SIGTERM: the study stops between a run's events
   const StudyResult study = run_study(scene, options);
+  if (study.stopped) {
+    std::cerr << "latfrac: study stopped on request after " << study.rows.size() << " of "
+              << 1 + options.increments.size() * (relaxation ? 2 : 1)
+              << " runs; no study files were written (a study is written whole)\n";
+    return stopped_status;
+  }
 
   // 3. study.csv, study.md and study.png, each complete or absent.
   if (out_dir.empty()) out_dir = (fs::path("out") / scene.name / "study").string();

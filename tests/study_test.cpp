@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "latfrac/base/error.h"
+#include "latfrac/base/stop_signal.h"
 #include "latfrac/scene/run.h"
 #include "scenes.h"
 
@@ -216,6 +217,24 @@ TEST_CASE("A run this version cannot make is a row, not a failed study", "[study
     CHECK_THAT(study_csv(study), Contains(",not available,"));
     CHECK_THAT(progress_line(relaxation), Contains("fixed+relaxation ds=1e-3: not available: "));
   }
+}
+
+TEST_CASE("A stop asked for during a study ends it after the runs already done", "[study]") {
+  // As SIGINT would between the reference and the first fixed-step run: that run stops at
+  // its first chance, leaves no row, and the later ones do not start.
+  StudyOptions options;
+  options.increments = {1e-4, 5e-5};
+  options.on_row = [](const StudyRow&) { request_stop(); };
+  const StudyResult study = run_study(strip_scene(), options);
+  clear_stop_request();
+  CHECK(study.stopped);
+  REQUIRE(study.rows.size() == 1);
+  CHECK(study.rows[0].reference);
+  // Without the request the same study runs whole.
+  options.on_row = nullptr;
+  const StudyResult whole = run_study(strip_scene(), options);
+  CHECK_FALSE(whole.stopped);
+  CHECK(whole.rows.size() == 3);
 }
 
 TEST_CASE("An increment that would take more than 1e9 steps is refused before the reference",

@@ -160,8 +160,7 @@ void FractureRun::take_snapshot(double lambda) {
 // A snapshot is taken at the first step that reaches its lambda.
 void FractureRun::fixed_steps() {
   const double total = schedule_.total, increment = schedule_.stepping.increment;
-  const long steps =
-      total == 0 ? 0 : static_cast<long>(std::ceil(std::abs(total) / increment - 1e-9));
+  const long steps = fixed_step_count(total, increment);
   const long first = resumed_ ? static_cast<long>(resumed_->next_step) : 0;
   std::int64_t unfinished = resumed_ ? resumed_->cascade : -1;
   resumed_ = nullptr;

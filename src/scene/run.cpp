@@ -17,6 +17,7 @@
 #include "latfrac/base/progress.h"
 #include "latfrac/fracture/fracture_run.h"
 #include "latfrac/fracture/initial_supports.h"
+#include "latfrac/fracture/schedule.h"
 #include "latfrac/fracture/snapshots.h"
 #include "latfrac/scene/model_builder.h"
 #include "latfrac/solvers/equilibrium.h"
@@ -135,12 +136,8 @@ void check_resume_point(const ResumePoint& resume, const Schedule& schedule, con
     refuse("stands at lambda " + std::to_string(c.lambda) + ", outside the loading 0 .. " +
            std::to_string(schedule.total));
   if (schedule.stepping.method == SteppingMethod::fixed) {
-    const double increment = schedule.stepping.increment;
-    const std::int64_t steps =
-        schedule.total == 0
-            ? 0
-            : static_cast<std::int64_t>(std::ceil(std::abs(schedule.total) / increment - 1e-9));
-    if (c.next_step > steps + 1)
+    const long steps = fixed_step_count(schedule.total, schedule.stepping.increment);
+    if (c.next_step > steps)
       refuse("stands at step " + std::to_string(c.next_step) + " of " + std::to_string(steps));
   }
 }

@@ -9,6 +9,8 @@
 #include <sstream>
 
 #include "latfrac/base/error.h"
+#include "latfrac/base/stop_signal.h"
+#include "latfrac/fracture/run_control.h"
 #include "latfrac/io/result_file.h"
 #include "latfrac/scene/run.h"
 #include "study_format.h"
@@ -34,6 +36,15 @@ Scene run_variant(const Scene& scene, SteppingMethod method, double increment,
   variant.output.picture = false;
   return variant;
 }
+
+// A run of the study stops between its events when a stop was asked for, and saves
+// nothing: the study writes its files whole or not at all.
+class StopOnRequest final : public RunControl {
+ public:
+  bool stop_requested() const override { return latfrac::stop_requested(); }
+  bool checkpoint_due() override { return false; }
+  void save(RunResult&, RunCheckpoint&) override {}
+};
 
 }  // namespace
 
@@ -152,7 +163,8 @@ void fill_from_run(StudyRow& row, const RunResult& run, const ReferenceFacts& re
 
 StudyResult run_study(const Scene& scene, const StudyOptions& options) {
   StudyResult study{scene.name, options.command_line, utc_timestamp(), {}};
-  RunOptions run_options{options.command_line, options.run_progress};
+  StopOnRequest control;
+  RunOptions run_options{options.command_line, options.run_progress, &control};
   auto report = [&](const StudyRow& row) {
     study.rows.push_back(row);
     if (options.on_row) options.on_row(row);
@@ -179,7 +191,17 @@ StudyResult run_study(const Scene& scene, const StudyOptions& options) {
       row.method = "event";
       variant = run_variant(scene, SteppingMethod::event, 0, scene.solver.method);
     }
-    const RunResult reference = run_scene(variant, run_options);
+    RunResult reference;
+    try {
+      reference = run_scene(variant, run_options);
+    } catch (const StopWithinEvent&) {
+      study.stopped = true;
+      return study;
+    }
+    if (!reference.summary.complete) {
+      study.stopped = true;
+      return study;
+    }
     check_result_finite(reference);  // as `latfrac run` would before writing it
     facts = reference_facts(reference);
     fill_from_run(row, reference, facts);
@@ -197,8 +219,15 @@ StudyResult run_study(const Scene& scene, const StudyOptions& options) {
       try {
         const RunResult run =
             run_scene(run_variant(scene, SteppingMethod::fixed, increment, solver), run_options);
+        if (!run.summary.complete) {
+          study.stopped = true;
+          return study;
+        }
         check_result_finite(run);  // a row of NaN would read as a result
         fill_from_run(row, run, facts);
+      } catch (const StopWithinEvent&) {
+        study.stopped = true;
+        return study;
       } catch (const InputError& error) {
         row.status = RunStatus::not_available;
         row.note = error.what();

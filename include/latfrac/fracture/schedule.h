@@ -2,6 +2,7 @@
 // snapshots are taken.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 namespace latfrac {
@@ -12,6 +13,11 @@ enum class SteppingMethod { event, fixed };
 // any lattice, and beyond it the step count does not fit the loop's counter either (an
 // increment of 1e-300 made a run that took no step and wrote a result with no snapshot).
 inline constexpr double max_fixed_steps = 1e9;
+
+// The number of fixed steps from 0 to total: the last may be shorter (it ends at total).
+inline long fixed_step_count(double total, double increment) {
+  return total == 0 ? 0 : static_cast<long>(std::ceil(std::abs(total) / increment - 1e-9));
+}
 
 struct Stepping {
   SteppingMethod method = SteppingMethod::event;

@@ -75,6 +75,9 @@ struct StudyResult {
   std::string command_line;
   std::string date;            // ISO 8601, UTC
   std::vector<StudyRow> rows;  // the reference first, then the runs in the order given
+  // A stop was asked for (SIGINT, SIGTERM): `rows` holds the runs that finished before it;
+  // the run it interrupted is not among them and the later ones did not start.
+  bool stopped = false;
 };
 
 struct StudyOptions {
