@@ -99,6 +99,17 @@ void edit_hdf5(const std::string& path, Edit edit) {
   REQUIRE(H5Fclose(file) >= 0);
 }
 
+// Deletes the dataset at path and creates one of that type and shape in its place (its
+// values unwritten).
+void replace_dataset(hid_t file, const char* path, hid_t type, const std::vector<hsize_t>& shape) {
+  REQUIRE(H5Ldelete(file, path, H5P_DEFAULT) >= 0);
+  const hid_t space = H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr);
+  const hid_t dataset = H5Dcreate2(file, path, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  REQUIRE(dataset >= 0);
+  H5Dclose(dataset);
+  H5Sclose(space);
+}
+
 // Finds the bytes of `value` in the file (they must occur once) and flips their lowest bit.
 void flip_bit_of(const std::string& path, const void* value, std::size_t size) {
   std::string bytes;
@@ -249,14 +260,7 @@ TEST_CASE("reading something that is not a complete latfrac result says why", "[
   SECTION("a result with a dataset of the wrong shape") {
     write_result_file(path, sample_result());
     edit_hdf5(path, [](hid_t file) {
-      REQUIRE(H5Ldelete(file, "/snapshots/1/node_stress", H5P_DEFAULT) >= 0);
-      const hsize_t shape[2] = {5, 3};
-      const hid_t space = H5Screate_simple(2, shape, nullptr);
-      const hid_t dataset = H5Dcreate2(file, "/snapshots/1/node_stress", H5T_IEEE_F64LE, space,
-                                       H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-      REQUIRE(dataset >= 0);
-      H5Dclose(dataset);
-      H5Sclose(space);
+      replace_dataset(file, "/snapshots/1/node_stress", H5T_IEEE_F64LE, {5, 3});
     });
     CHECK_THAT(thrown_message<InputError>([&] { read_result_file(path); }),
                Contains("/snapshots/1/node_stress is 5 x 3, expected 5 x 6"));
@@ -301,17 +305,10 @@ TEST_CASE("reading something that is not a complete latfrac result says why", "[
     // its buffers, so a width latfrac never writes is refused before reading.
     write_result_file(path, sample_result());
     edit_hdf5(path, [](hid_t file) {
-      REQUIRE(H5Ldelete(file, "/events/bond", H5P_DEFAULT) >= 0);
-      const hsize_t shape[1] = {3};
-      const hid_t space = H5Screate_simple(1, shape, nullptr);
       const hid_t wide = H5Tcopy(H5T_STD_I64LE);
       REQUIRE(H5Tset_size(wide, 16) >= 0);
-      const hid_t dataset =
-          H5Dcreate2(file, "/events/bond", wide, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-      REQUIRE(dataset >= 0);
-      H5Dclose(dataset);
+      replace_dataset(file, "/events/bond", wide, {3});
       H5Tclose(wide);
-      H5Sclose(space);
     });
     CHECK_THAT(thrown_message<InputError>([&] { read_result_file(path); }),
                Contains("/events/bond") && Contains("16 bytes"));

@@ -251,9 +251,9 @@ void write_hdf5(const std::string& file_name, const RunResult& result,
     hdf5::check(H5Pset_fclose_degree(access.get(), H5F_CLOSE_SEMI), "H5Pset_fclose_degree", quoted);
     hdf5::check(H5Pset_fapl_core(access.get(), estimated_bytes(result), 0), "H5Pset_fapl_core",
                 quoted);
-    // The 1.8 format: object headers and the superblock carry checksums, so a damaged
-    // attribute (the checkpoint's counters, the provenance) fails to read instead of
-    // reading wrong; any HDF5 since 1.8 (2008), h5py and ParaView read it.
+    // The 1.10 format: the superblock, object headers and chunk indexes carry checksums,
+    // so a damaged attribute (the checkpoint's counters) fails to read instead of reading
+    // wrong; any HDF5 since 1.10 (2016) reads it (docs/result-files.md).
     hdf5::check(H5Pset_libver_bounds(access.get(), H5F_LIBVER_V110, H5F_LIBVER_V110),
                 "H5Pset_libver_bounds", quoted);
     hdf5::Handle file =

@@ -109,20 +109,16 @@ void restore_model(Model& model, const RunCheckpoint& checkpoint, const std::str
 
 // The checkpoint against the rest of its file and the problem: where the run stood
 // (lambda, step, snapshots taken, parts held) must be a place this problem's run can
-// stand, and every event must name one of its bonds. Otherwise the resumed run would
-// index out of range, or write a file that says complete without what it lacks.
-void check_resume_point(const ResumePoint& resume, const Schedule& schedule, const Model& model,
+// stand. Otherwise the resumed run would index out of range, or write a file that says
+// complete without what it lacks. (The events' bonds were checked on reading the file,
+// read_result_file; the checkpoint's own indices by read_checkpoint.)
+void check_resume_point(const ResumePoint& resume, const Schedule& schedule,
                         const std::string& source) {
   const RunCheckpoint& c = resume.checkpoint;
   auto refuse = [&](const std::string& what) {
     throw InputError(source + ": cannot resume: the checkpoint " + what +
                      " (the result file is damaged or was edited)");
   };
-  const std::int64_t bonds = model.lattice.bond_count();
-  for (const BreakEvent& event : resume.result.events)
-    if (event.bond < 0 || event.bond >= bonds)
-      refuse("comes with a break event for bond " + std::to_string(event.bond) + " of " +
-             std::to_string(bonds));
   const auto taken = static_cast<std::int64_t>(resume.result.snapshots.size());
   const auto planned =
       static_cast<std::int64_t>(std::max<std::size_t>(1, schedule.snapshots.size()));
@@ -221,7 +217,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     if (resume->result.positions != result.positions || resume->result.bonds != result.bonds)
       throw InputError(scene.source_path + ": the result file's lattice is not this problem's");
     restore_model(model, resume->checkpoint, scene.source_path);
-    check_resume_point(*resume, schedule_of(scene), model, scene.source_path);
+    check_resume_point(*resume, schedule_of(scene), scene.source_path);
     result.provenance = resume->result.provenance;
     result.events = resume->result.events;
     result.snapshots = resume->result.snapshots;

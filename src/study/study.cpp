@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -164,7 +165,17 @@ void fill_from_run(StudyRow& row, const RunResult& run, const ReferenceFacts& re
 StudyResult run_study(const Scene& scene, const StudyOptions& options) {
   StudyResult study{scene.name, options.command_line, utc_timestamp(), {}};
   StopOnRequest control;
-  RunOptions run_options{options.command_line, options.run_progress, &control};
+  const RunOptions run_options{options.command_line, options.run_progress, &control};
+  // A run, or nothing when a stop was asked for during it (between its events, or inside
+  // one of its solves).
+  auto run_unless_stopped = [&](const Scene& variant) -> std::optional<RunResult> {
+    try {
+      RunResult run = run_scene(variant, run_options);
+      if (run.summary.complete) return run;
+    } catch (const StopWithinEvent&) {
+    }
+    return std::nullopt;
+  };
   auto report = [&](const StudyRow& row) {
     study.rows.push_back(row);
     if (options.on_row) options.on_row(row);
@@ -191,20 +202,14 @@ StudyResult run_study(const Scene& scene, const StudyOptions& options) {
       row.method = "event";
       variant = run_variant(scene, SteppingMethod::event, 0, scene.solver.method);
     }
-    RunResult reference;
-    try {
-      reference = run_scene(variant, run_options);
-    } catch (const StopWithinEvent&) {
+    const std::optional<RunResult> reference = run_unless_stopped(variant);
+    if (!reference) {
       study.stopped = true;
       return study;
     }
-    if (!reference.summary.complete) {
-      study.stopped = true;
-      return study;
-    }
-    check_result_finite(reference);  // as `latfrac run` would before writing it
-    facts = reference_facts(reference);
-    fill_from_run(row, reference, facts);
+    check_result_finite(*reference);  // as `latfrac run` would before writing it
+    facts = reference_facts(*reference);
+    fill_from_run(row, *reference, facts);
     report(row);
   }
 
@@ -217,17 +222,14 @@ StudyResult run_study(const Scene& scene, const StudyOptions& options) {
       row.method = name;
       row.increment = increment;
       try {
-        const RunResult run =
-            run_scene(run_variant(scene, SteppingMethod::fixed, increment, solver), run_options);
-        if (!run.summary.complete) {
+        const std::optional<RunResult> run =
+            run_unless_stopped(run_variant(scene, SteppingMethod::fixed, increment, solver));
+        if (!run) {
           study.stopped = true;
           return study;
         }
-        check_result_finite(run);  // a row of NaN would read as a result
-        fill_from_run(row, run, facts);
-      } catch (const StopWithinEvent&) {
-        study.stopped = true;
-        return study;
+        check_result_finite(*run);  // a row of NaN would read as a result
+        fill_from_run(row, *run, facts);
       } catch (const InputError& error) {
         row.status = RunStatus::not_available;
         row.note = error.what();
