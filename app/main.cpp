@@ -390,7 +390,9 @@ std::size_t chosen_snapshot(const RunResult& result, double lambda) {
   return index;
 }
 
-int analyze_command(const std::string& path, bool json, double lambda) {
+int analyze_command(const std::string& path, bool json, double lambda, double min_offset) {
+  if (!(min_offset >= 0) || !std::isfinite(min_offset))
+    throw InputError("--min-offset must be 0 or more (m) and finite");
   // 1. Read the result; 2. analyse the faults of the chosen snapshot; 3. print.
   const RunResult result = read_result_file(path);
   // A result without snapshots (a run stopped before its first) has no faults to analyse:
@@ -401,7 +403,9 @@ int analyze_command(const std::string& path, bool json, double lambda) {
     return 0;
   }
   std::optional<FaultReport> report;
-  if (!none) report = analyze_faults(result, chosen_snapshot(result, lambda));
+  FaultOptions options;
+  options.min_offset = min_offset;
+  if (!none) report = analyze_faults(result, chosen_snapshot(result, lambda), options);
   if (json) {
     const std::string faults = report ? to_json(*report) : "null";
     const RunSummary& s = result.summary;
@@ -554,6 +558,10 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   analyze->add_flag("--json", json, "machine-readable output");
   analyze->add_option("--lambda", lambda, "the snapshot nearest this lambda (default: the last)");
+  double min_offset = 0;
+  analyze->add_option("--min-offset", min_offset,
+                      "analyse only the broken bonds whose nodes moved apart by at least this "
+                      "much, m (default 0: all)");
 
   RenderNames names;
   bool faults = false;
@@ -611,7 +619,7 @@ int main(int argc, char** argv) {
       if (*command && command->count("--lambda") > 0 && !std::isfinite(lambda))
         throw InputError("--lambda must be a finite number (a loading, strain), got " +
                          command->get_option("--lambda")->as<std::string>());
-    if (*analyze) return analyze_command(result_path, json, lambda);
+    if (*analyze) return analyze_command(result_path, json, lambda, min_offset);
     if (*render)
       return render_command(result_path, lambda, png,
                             picture_options(names, width, exaggeration, faults));

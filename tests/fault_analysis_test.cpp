@@ -523,3 +523,136 @@ TEST_CASE("A plane along x in a block thick in y is a fault: the rule is not an 
   CHECK(std::abs(fault.normal[1]) > 0.999);
   CHECK(fault.dip_deg == Approx(90.0).margin(1.0));
 }
+
+namespace {
+
+// Breaks every intact bond whose nodes lie on opposite sides of `side` (< 0 against >= 0)
+// and moves the nodes on the side >= 0 by `shift`: a cut with a rigid block's motion across
+// it, so every broken bond's u_j - u_i is +-shift exactly. Returns the bonds broken.
+std::vector<std::int64_t> cut_and_shift(RunResult& result,
+                                        const std::function<double(const Xyz&)>& side,
+                                        const Xyz& shift) {
+  auto node = [&](std::int64_t i) {
+    return Xyz{result.positions[3 * i], result.positions[3 * i + 1], result.positions[3 * i + 2]};
+  };
+  Snapshot& snapshot = result.snapshots.back();
+  std::vector<std::int64_t> broken;
+  for (std::size_t b = 0; b < result.bond_count(); ++b) {
+    const bool i_up = side(node(result.bonds[2 * b])) >= 0;
+    const bool j_up = side(node(result.bonds[2 * b + 1])) >= 0;
+    if (snapshot.bond_intact[b] && i_up != j_up) {
+      snapshot.bond_intact[b] = 0;
+      broken.push_back(static_cast<std::int64_t>(b));
+    }
+  }
+  for (std::size_t i = 0; i < result.node_count(); ++i) {
+    if (side(node(static_cast<std::int64_t>(i))) < 0) continue;
+    for (int c = 0; c < 3; ++c) snapshot.displacement[3 * i + c] += shift[c];
+  }
+  return broken;
+}
+
+}  // namespace
+
+TEST_CASE("A fault's offsets are its hanging wall's motion resolved on the fault", "[analysis]") {
+  // A fault through (30, top) descending towards `direction` (+1: +x) at `dip`; its hanging
+  // wall (the side above it) moves by `slip` down the dip and `opening` along the upward
+  // normal. Every broken bond crosses the fault, so the means are the block's motion.
+  const auto [dip, direction] = GENERATE(table<double, int>({{60.0, 1}, {45.0, -1}, {70.0, -1}}));
+  const double opening = GENERATE(0.0, 0.4);
+  CAPTURE(dip, direction, opening);
+  const double slip = 2.5;
+  RunResult result = triangular();
+  const double top = top_z(result), c = std::cos(dip * kDegree), s = std::sin(dip * kDegree);
+  const Xyz down{direction * c, 0, -s}, normal{direction * s, 0, c};
+  // Above the fault: positive along the upward normal from a point on it.
+  const auto above = [&](const Xyz& p) {
+    return (p[0] - 30.0) * normal[0] + (p[2] - top) * normal[2];
+  };
+  const Xyz shift{slip * down[0] + opening * normal[0], 0, slip * down[2] + opening * normal[2]};
+  const auto broken = cut_and_shift(result, above, shift);
+  const FaultReport report = analyze_faults(result);
+
+  REQUIRE(report.faults.size() == 1);
+  const Fault& fault = report.faults[0];
+  CHECK(fault.bonds == static_cast<std::int64_t>(broken.size()));
+  CHECK(std::abs(fault.dip_deg - dip) < kDipToleranceDeg);
+  CHECK(fault.dip_direction == direction);
+  // The fitted line is within a degree of the cut's, so the offsets are within
+  // |shift| sin(1 deg) of the cut's own.
+  const double tolerance = std::hypot(slip, opening) * std::sin(kDipToleranceDeg * kDegree);
+  CHECK(fault.dip_slip == Approx(slip).margin(tolerance));
+  CHECK(fault.opening == Approx(opening).margin(tolerance));
+  CHECK(fault.slip == Approx(slip).margin(tolerance));
+  CHECK(fault.motion_share == Approx(1.0).epsilon(1e-12));
+  CHECK(report.relative_motion ==
+        Approx(static_cast<double>(broken.size()) * std::hypot(slip, opening)).epsilon(1e-12));
+  CHECK(report.moved_bonds == report.broken_bonds);
+}
+
+TEST_CASE("A reverse fault's dip-slip is negative, an opening crack's has none", "[analysis]") {
+  SECTION("reverse: the hanging wall moves up the dip") {
+    RunResult result = triangular();
+    const double top = top_z(result), c = std::cos(50 * kDegree), s = std::sin(50 * kDegree);
+    cut_and_shift(result, [&](const Xyz& p) { return (p[0] - 30.0) * s + (p[2] - top) * c; },
+                  {-1.5 * c, 0, 1.5 * s});
+    const FaultReport report = analyze_faults(result);
+    REQUIRE(report.faults.size() == 1);
+    CHECK(report.faults[0].dip_slip == Approx(-1.5).margin(0.03));
+    CHECK(report.faults[0].opening == Approx(0).margin(0.03));
+  }
+  SECTION("a vertical crack opening by 0.7 m") {
+    RunResult result = triangular();
+    cut_and_shift(result, [](const Xyz& p) { return p[0] - 30.25; }, {0.7, 0, 0});
+    const FaultReport report = analyze_faults(result);
+    REQUIRE(report.faults.size() == 1);
+    const Fault& fault = report.faults[0];
+    CHECK(fault.dip_direction == 0);
+    // The fitted line is within a degree of the cut (the midpoints' staircase tilts it).
+    const double tolerance = 0.7 * std::sin(kDipToleranceDeg * kDegree);
+    CHECK(fault.opening == Approx(0.7).margin(tolerance));
+    CHECK(fault.slip == Approx(0).margin(tolerance));
+    CHECK(std::isnan(fault.dip_slip));  // no hanging wall on a vertical fault
+    const std::string json = to_json(report);
+    check_json_shape(json);
+    CHECK(json.find("\"dip_slip_m\": null") != std::string::npos);
+  }
+}
+
+TEST_CASE("The motion's shares, and min_offset keeps the bonds that moved", "[analysis]") {
+  // Two vertical cracks: the one at x = 15.25 opens by 1 m, the one at x = 45.25 by 3 m.
+  RunResult result = triangular();
+  const auto first = cut_and_shift(result, [](const Xyz& p) { return p[0] - 15.25; }, {1, 0, 0});
+  const auto second = cut_and_shift(result, [](const Xyz& p) { return p[0] - 45.25; }, {3, 0, 0});
+  const double n1 = static_cast<double>(first.size()), n2 = static_cast<double>(second.size());
+
+  const FaultReport all = analyze_faults(result);
+  REQUIRE(all.faults.size() == 2);
+  CHECK(all.broken_bonds == static_cast<std::int64_t>(first.size() + second.size()));
+  CHECK(all.moved_bonds == all.broken_bonds);
+  CHECK(all.relative_motion == Approx(n1 + 3 * n2).epsilon(1e-12));
+  for (const Fault& fault : all.faults) {
+    const bool is_second = fault.centroid[0] > 30;
+    CHECK(fault.opening == Approx(is_second ? 3.0 : 1.0).epsilon(1e-3));  // the fit's tilt
+    CHECK(fault.motion_share == Approx((is_second ? 3 * n2 : n1) / (n1 + 3 * n2)).epsilon(1e-12));
+  }
+
+  FaultOptions moving;
+  moving.min_offset = 2.0;
+  const FaultReport moved = analyze_faults(result, kLastSnapshot, moving);
+  CHECK(moved.broken_bonds == all.broken_bonds);
+  CHECK(moved.moved_bonds == static_cast<std::int64_t>(second.size()));
+  CHECK(moved.min_offset == 2.0);
+  CHECK(moved.relative_motion == Approx(3 * n2).epsilon(1e-12));
+  REQUIRE(moved.faults.size() == 1);
+  CHECK(moved.faults[0].centroid[0] == Approx(45.25).margin(0.5));
+  CHECK(moved.faults[0].motion_share == Approx(1.0).epsilon(1e-12));
+  CHECK(to_text(moved).find("moved by 2 m or more") != std::string::npos);
+  check_json_with_python(to_json(moved));
+
+  for (const double bad :
+       {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    moving.min_offset = bad;
+    CHECK_THROWS_AS(analyze_faults(result, kLastSnapshot, moving), InputError);
+  }
+}

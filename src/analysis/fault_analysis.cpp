@@ -53,6 +53,9 @@ void check_input(const RunResult& result, std::size_t index, const FaultOptions&
   if (!(options.wall_share > 0 && options.wall_share <= 1)) {
     throw InputError("fault analysis: the wall share must be above 0 and at most 1");
   }
+  if (!(options.min_offset >= 0) || !std::isfinite(options.min_offset)) {
+    throw InputError("fault analysis: the least offset must be 0 or more (m) and finite");
+  }
   const std::size_t nodes = result.positions.size() / 3;
   const std::size_t bonds = result.bonds.size() / 2;
   if (result.positions.size() % 3 != 0 || result.bonds.size() % 2 != 0) {
@@ -82,6 +85,42 @@ void check_input(const RunResult& result, std::size_t index, const FaultOptions&
 Point node_position(const RunResult& result, std::int64_t node) {
   return {result.positions[3 * node], result.positions[3 * node + 1],
           result.positions[3 * node + 2]};
+}
+
+Point node_displacement(const Snapshot& snapshot, std::int64_t node) {
+  return {snapshot.displacement[3 * node], snapshot.displacement[3 * node + 1],
+          snapshot.displacement[3 * node + 2]};
+}
+
+// A broken bond analysed: its reference vector X_j - X_i and its relative displacement
+// u_j - u_i at the snapshot, m.
+struct BondMotion {
+  Point reference = Point::Zero(), relative = Point::Zero();
+};
+
+// The fault's offsets (Fault::opening, slip, dip_slip, motion_share) from its bonds'
+// motions; `total`: the relative motion over every bond analysed, m.
+void set_offsets(Fault& fault, const std::vector<BondMotion>& motions, double total) {
+  if (motions.empty()) return;
+  const Point normal(fault.normal[0], fault.normal[1], fault.normal[2]);
+  // Down the dip: -e_z projected on the fault (undefined for a horizontal one).
+  const Point down = (Point(0, 0, -1) + normal.z() * normal).normalized();
+  double opening = 0, slip = 0, dip_slip = 0, motion = 0;
+  for (const BondMotion& m : motions) {
+    // The node on the normal's side less the other.
+    const Point across = m.reference.dot(normal) < 0 ? Point(-m.relative) : m.relative;
+    const double normal_part = across.dot(normal);
+    opening += normal_part;
+    slip += (across - normal_part * normal).norm();
+    dip_slip += across.dot(down);
+    motion += m.relative.norm();
+  }
+  const double count = static_cast<double>(motions.size());
+  fault.opening = opening / count;
+  fault.slip = slip / count;
+  fault.dip_slip =
+      fault.dip_direction == 0 ? std::numeric_limits<double>::quiet_NaN() : dip_slip / count;
+  fault.motion_share = total > 0 ? motion / total : 0;
 }
 
 // The break mode of each bond from its first event: 0 tensile, 1 shear, 2 pre-cut, -1 none.
@@ -136,21 +175,29 @@ FaultReport analyze_faults(const RunResult& result, std::size_t index,
   report.dim = dim;
   report.lambda = snapshot.lambda;
   const std::vector<std::int8_t> modes = break_modes(result);
-  std::vector<std::int64_t> broken;
+  report.min_offset = options.min_offset;
+  std::vector<std::int64_t> broken;  // the bonds analysed
+  std::vector<BondMotion> motions;
   std::vector<Point> midpoints, precut_midpoints;
   for (std::size_t b = 0; b < snapshot.bond_intact.size(); ++b) {
     if (snapshot.bond_intact[b] != 0) continue;
-    Point midpoint = 0.5 * (node_position(result, result.bonds[2 * b]) +
-                            node_position(result, result.bonds[2 * b + 1]));
+    const std::int64_t i = result.bonds[2 * b], j = result.bonds[2 * b + 1];
+    Point midpoint = 0.5 * (node_position(result, i) + node_position(result, j));
     if (dim == 2) midpoint.y() = 0;
     if (modes[b] == 2) {
       precut_midpoints.push_back(midpoint);
       continue;
     }
+    ++report.broken_bonds;
+    const BondMotion motion{node_position(result, j) - node_position(result, i),
+                            node_displacement(snapshot, j) - node_displacement(snapshot, i)};
+    if (!(motion.relative.norm() >= options.min_offset)) continue;
     broken.push_back(static_cast<std::int64_t>(b));
+    motions.push_back(motion);
     midpoints.push_back(midpoint);
+    report.relative_motion += motion.relative.norm();
   }
-  report.broken_bonds = static_cast<std::int64_t>(broken.size());
+  report.moved_bonds = static_cast<std::int64_t>(broken.size());
   report.precut_bonds = static_cast<std::int64_t>(precut_midpoints.size());
 
   const double spacing = result.scene.spacing;  // m
@@ -164,14 +211,18 @@ FaultReport analyze_faults(const RunResult& result, std::size_t index,
     for (const std::vector<std::size_t>& part :
          split_cluster(midpoints, cluster, fitter, options, spacing)) {
       std::vector<Point> points;
+      std::vector<BondMotion> part_motions;
       points.reserve(part.size());
+      part_motions.reserve(part.size());
       std::int64_t tensile = 0, shear = 0;
       for (const std::size_t k : part) {
         points.push_back(midpoints[k]);
+        part_motions.push_back(motions[k]);
         tensile += modes[broken[k]] == 0;
         shear += modes[broken[k]] == 1;
       }
       Fault fault = fitter.fit(points);
+      set_offsets(fault, part_motions, report.relative_motion);
       fault.tensile_share = static_cast<double>(tensile) / static_cast<double>(part.size());
       fault.shear_share = static_cast<double>(shear) / static_cast<double>(part.size());
       fault.wall_share =

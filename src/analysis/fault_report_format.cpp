@@ -41,12 +41,18 @@ std::string json_side(int direction) {
 
 double share_outside_graben(const FaultReport& report) {
   if (!report.graben) return 1;
-  if (report.broken_bonds == 0) return 0;
+  if (report.moved_bonds == 0) return 0;
   const Graben& graben = report.grabens[*report.graben];
   const std::int64_t inside =
       report.faults[graben.left_fault].bonds + report.faults[graben.right_fault].bonds;
-  return static_cast<double>(report.broken_bonds - inside) /
-         static_cast<double>(report.broken_bonds);
+  return static_cast<double>(report.moved_bonds - inside) / static_cast<double>(report.moved_bonds);
+}
+
+double graben_motion_share(const FaultReport& report) {
+  if (!report.graben) return 0;
+  const Graben& graben = report.grabens[*report.graben];
+  return report.faults[graben.left_fault].motion_share +
+         report.faults[graben.right_fault].motion_share;
 }
 
 namespace {
@@ -65,8 +71,11 @@ std::string roles_text(const FaultReport& report) {
     const Graben& graben = report.grabens[*report.graben];
     text += "faults " + fault_text(report, graben.left_fault) + " and " +
             fault_text(report, graben.right_fault) +
-            format("; subsidence %.5g m; %.0f %% of the broken bonds outside these two\n",
-                   graben.surface_subsidence, 100 * share_outside_graben(report));
+            format(
+                "; subsidence %.5g m; %.0f %% of the broken bonds outside these two, "
+                "%.0f %% of the relative motion on them\n",
+                graben.surface_subsidence, 100 * share_outside_graben(report),
+                100 * graben_motion_share(report));
   } else {
     text += "none\n";
   }
@@ -104,7 +113,8 @@ std::string json_roles(const FaultReport& report) {
             json_fault_angles(report, graben.left_fault) + "}, " +
             json_fault_angles(report, graben.right_fault) +
             "}], \"subsidence_m\": " + json_number(graben.surface_subsidence) +
-            ", \"share_outside\": " + json_number(share_outside_graben(report)) + "}";
+            ", \"share_outside\": " + json_number(share_outside_graben(report)) +
+            ", \"motion_share\": " + json_number(graben_motion_share(report)) + "}";
   } else {
     json += "null";
   }
@@ -126,17 +136,23 @@ std::string to_text(const FaultReport& report) {
   const bool three_d = report.dim == 3;
   std::string text = format("Faults at lambda = %g: %lld broken bonds (pre-cuts excluded); ",
                             report.lambda, static_cast<long long>(report.broken_bonds));
+  if (report.min_offset > 0) {
+    text += format("%lld of them moved by %g m or more, analysed; ",
+                   static_cast<long long>(report.moved_bonds), report.min_offset);
+  }
   text += format("clusters: %zu, grabens: %zu\n", report.faults.size(), report.grabens.size());
   if (report.faults.empty()) return text;
 
   text +=
       "dip: from horizontal; alpha = 90 - dip: to the vertical (sigma1); "
-      "dips to: the side the fault descends towards\n";
+      "dips to: the side the fault descends towards\n"
+      "opening, slip, dip-slip: the mean offset across its bonds, m (dip-slip > 0: normal "
+      "sense); motion: its share of the relative motion across the bonds analysed\n";
   text +=
       format("%4s %6s %8s %8s %6s %6s %6s %7s %11s %9s %11s", "#", "role", "bonds", "tensile",
              "shear", "dip", "alpha", "dips to", three_d ? "area m^2" : "length m", "rms m", "x m");
   if (three_d) text += format(" %11s", "y m");
-  text += format(" %11s\n", "z m");
+  text += format(" %11s %9s %9s %9s %7s\n", "z m", "opening", "slip", "dip-slip", "motion");
   for (std::size_t f = 0; f < report.faults.size(); ++f) {
     const Fault& fault = report.faults[f];
     text += format("%4zu %6s %8lld %8.2f %6.2f %6.1f %6.1f %7s %11.4g %9.3g %11.5g", f + 1,
@@ -145,7 +161,8 @@ std::string to_text(const FaultReport& report) {
                    dip_direction_text(fault.dip_direction).c_str(), fault.extent, fault.fit_rms,
                    fault.centroid[0]);
     if (three_d) text += format(" %11.5g", fault.centroid[1]);
-    text += format(" %11.5g", fault.centroid[2]);
+    text += format(" %11.5g %9.3g %9.3g %9.3g %6.0f%%", fault.centroid[2], fault.opening,
+                   fault.slip, fault.dip_slip, 100 * fault.motion_share);
     if (fault.diffuse)
       text += format("  diffuse (variance ratio %.2f, rms %.3g m, fill share %.2f): not a fault",
                      fault.variance_ratio, fault.fit_rms, fault.fill_share);
@@ -167,7 +184,10 @@ std::string to_text(const FaultReport& report) {
 std::string to_json(const FaultReport& report) {
   std::string json =
       "{\"dim\": " + std::to_string(report.dim) + ", \"lambda\": " + json_number(report.lambda) +
-      ", \"broken_bonds\": " + std::to_string(report.broken_bonds) + ", \"faults\": [";
+      ", \"broken_bonds\": " + std::to_string(report.broken_bonds) +
+      ", \"min_offset_m\": " + json_number(report.min_offset) +
+      ", \"moved_bonds\": " + std::to_string(report.moved_bonds) +
+      ", \"relative_motion_m\": " + json_number(report.relative_motion) + ", \"faults\": [";
   for (std::size_t f = 0; f < report.faults.size(); ++f) {
     const Fault& fault = report.faults[f];
     if (f > 0) json += ", ";
@@ -186,7 +206,11 @@ std::string to_json(const FaultReport& report) {
             ", \"fill_share\": " + json_number(fault.fill_share) +
             ", \"diffuse\": " + (fault.diffuse ? "true" : "false") +
             ", \"wall_share\": " + json_number(fault.wall_share) +
-            ", \"precut_distance\": " + json_number(fault.precut_distance) + ", \"role\": \"" +
+            ", \"precut_distance\": " + json_number(fault.precut_distance) +
+            ", \"opening_m\": " + json_number(fault.opening) +
+            ", \"slip_m\": " + json_number(fault.slip) +
+            ", \"dip_slip_m\": " + json_number(fault.dip_slip) +
+            ", \"motion_share\": " + json_number(fault.motion_share) + ", \"role\": \"" +
             to_string(fault.role) + "\"}";
   }
   json += "], \"grabens\": [";

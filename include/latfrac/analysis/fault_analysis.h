@@ -18,6 +18,12 @@
 // straight parts (k-lines or k-planes, recursively), each reported as a fault; a shattered
 // region does not split into faults and stays one diffuse cluster.
 //
+// Each fault also gets its offset at the snapshot: the relative displacement across its
+// bonds, resolved on its fitted line or plane (opening, slip, dip-slip), and its share of
+// the relative motion across all the broken bonds analysed. That tells the faults that
+// carry the deformation from the damage around them; `min_offset` keeps only the bonds
+// whose two nodes moved apart by at least that much.
+//
 // Each fault then gets a role: one of the two faults of the graben (the pair bounding the
 // block that subsided most), the fault through or from the tip of the pre-cut, a wall fault
 // (one lying along a side wall, where the loading holds the body), or other. A run's
@@ -57,6 +63,9 @@ struct FaultOptions {
   // wall (x = min or max of the lattice) lies along that wall: role "wall".
   double wall_distance_spacings = 3.0;
   double wall_share = 0.5;
+  // m: only broken bonds whose nodes' relative displacement |u_j - u_i| at the snapshot is
+  // at least this are analysed (the moving ones); 0: every broken bond.
+  double min_offset = 0;
 };
 
 // What a fault is in the run (docs/fault-analysis.md, "Roles"). A fault that is both a
@@ -90,6 +99,16 @@ struct Fault {
   // the run has no pre-cut.
   double precut_distance = std::numeric_limits<double>::infinity();
   FaultRole role = FaultRole::other;
+  // The relative displacement across its bonds at the snapshot (m), each bond's the
+  // displacement of its node on the side the normal points to (above the fault) less the
+  // other's, resolved on the fitted line or plane and averaged over the bonds:
+  // opening along the normal (positive: the faces apart), slip its magnitude along the
+  // fault, dip-slip its component down the dip (positive: the upper side went down the
+  // dip, a normal fault's sense; NaN when dip_direction is 0).
+  double opening = 0, slip = 0, dip_slip = 0;
+  // Its share of the relative motion, the sum of |u_j - u_i| over the bonds analysed
+  // (FaultReport::relative_motion); 0 when nothing moved.
+  double motion_share = 0;
 };
 
 struct Graben {
@@ -105,6 +124,9 @@ struct FaultReport {
   int dim = 2;
   double lambda = 0;              // the snapshot analysed
   std::int64_t broken_bonds = 0;  // pre-cuts excluded
+  double min_offset = 0;          // m: FaultOptions::min_offset
+  std::int64_t moved_bonds = 0;   // of the broken bonds, those analysed (moved by min_offset)
+  double relative_motion = 0;     // m: the sum of |u_j - u_i| over the bonds analysed
   std::vector<Fault> faults;      // largest first
   std::vector<Graben> grabens;    // ordered by left_surface_x
   std::int64_t precut_bonds = 0;  // bonds a pre-cut broke (break events of mode 2)
@@ -122,10 +144,14 @@ inline constexpr std::size_t kLastSnapshot = std::numeric_limits<std::size_t>::m
 FaultReport analyze_faults(const RunResult& result, std::size_t index = kLastSnapshot,
                            const FaultOptions& options = {});
 
-// The share of the broken bonds (pre-cuts excluded) outside the two faults of the graben
-// (FaultReport::graben): the faults issue's measure of how much damage lies off the faults.
-// 1 when there is no graben, 0 when nothing broke.
+// The share of the broken bonds analysed (pre-cuts excluded; all of them unless
+// min_offset) outside the two faults of the graben (FaultReport::graben): the faults
+// issue's measure of how much damage lies off the faults. 1 when there is no graben, 0
+// when nothing broke.
 double share_outside_graben(const FaultReport& report);
+// The share of the relative motion on the graben's two faults; 0 when there is no graben
+// or nothing moved.
+double graben_motion_share(const FaultReport& report);
 
 // A readable table for `latfrac analyze`.
 std::string to_text(const FaultReport& report);
