@@ -440,8 +440,9 @@ Enum named_option(std::optional<Enum> (*lookup)(std::string_view), const std::st
 }
 
 PictureOptions picture_options(const RenderNames& names, int width, double exaggeration,
-                               bool faults) {
+                               bool faults, double min_offset) {
   PictureOptions options;
+  options.min_offset = min_offset;
   options.view = named_option(picture_view_named, "--view", names.view, picture_view_names());
   options.style = named_option(crack_style_named, "--style", names.style, crack_style_names());
   options.field = named_option(node_field_named, "--field", names.field, node_field_names());
@@ -552,13 +553,13 @@ int main(int argc, char** argv) {
   study->add_flag("--force", force,
                   "run even when the memory estimate exceeds the available memory");
 
+  double min_offset = 0;  // m (analyze and render --min-offset)
   auto* analyze = app.add_subcommand("analyze", "summarise a result file");
   analyze->add_option("result", result_path, "a result file (.h5)")
       ->required()
       ->check(CLI::ExistingFile);
   analyze->add_flag("--json", json, "machine-readable output");
   analyze->add_option("--lambda", lambda, "the snapshot nearest this lambda (default: the last)");
-  double min_offset = 0;
   analyze->add_option("--min-offset", min_offset,
                       "analyse only the broken bonds whose nodes moved apart by at least this "
                       "much, m (default 0: all)");
@@ -584,6 +585,9 @@ int main(int argc, char** argv) {
   render->add_option("--field", names.field,
                      "colour the nodes by: " + list_of_names(node_field_names()));
   render->add_flag("--faults", faults, "draw the fitted faults (alpha, dip) and grabens");
+  render->add_option("--min-offset", min_offset,
+                     "draw (and with --faults analyse) only the broken bonds whose nodes moved "
+                     "apart by at least this much, m (default 0: all)");
   render->add_option("--section-y", names.section_y, "3-D: the section at this y, m");
   render->add_option("--section-x", names.section_x, "3-D: the section at this x, m");
 
@@ -622,7 +626,7 @@ int main(int argc, char** argv) {
     if (*analyze) return analyze_command(result_path, json, lambda, min_offset);
     if (*render)
       return render_command(result_path, lambda, png,
-                            picture_options(names, width, exaggeration, faults));
+                            picture_options(names, width, exaggeration, faults, min_offset));
     std::cout << app.help();
     return 2;
   } catch (const InputError& e) {

@@ -112,6 +112,31 @@ TEST_CASE("a broken bond's midpoint is drawn in its mode's colour, the lattice g
   CHECK(report.broken_bonds_drawn == 3);
 }
 
+TEST_CASE("min_offset draws only the broken bonds whose nodes moved apart by that much",
+          "[render]") {
+  // The tensile bond's right node moves 30 m away from its left one, the shear bond's
+  // 3 m; the pre-cut's not at all. At 10 m only the first is drawn: the others' midpoints
+  // are not drawn in their colours.
+  ScratchDir dir;
+  std::size_t bonds[3];
+  RunResult result = patch_with_three_modes(bonds);
+  result.snapshots[0].displacement[3 * 13] = 30.0;
+  result.snapshots[0].displacement[3 * 37 + 2] = -3.0;
+  PictureOptions options{.width = 800};
+  options.min_offset = 10.0;
+  const PictureReport report = render_picture(result, 0, dir.file("moved.png"), options);
+  CHECK(report.broken_bonds_drawn == 1);
+  const Image image = read_png(dir.file("moved.png"));
+  const auto tensile = bond_middle(result, bonds[0]);
+  const auto shear = bond_middle(result, bonds[1]);
+  CHECK(colour_at(image, report, tensile[0] + 15.0, tensile[2]) == rgb(tensile_colour));
+  CHECK(colour_at(image, report, shear[0], shear[2] - 1.5) != rgb(shear_colour));
+  options.min_offset = 3.0;  // the shear bond's 3 m is enough
+  CHECK(render_picture(result, 0, dir.file("moved3.png"), options).broken_bonds_drawn == 2);
+  options.min_offset = 0;
+  CHECK(render_picture(result, 0, dir.file("all.png"), options).broken_bonds_drawn == 3);
+}
+
 TEST_CASE("a compression run's broken bonds are drawn in their modes' colours too", "[render]") {
   // Its lambda falls from 0: the events before the snapshot at -0.01 are at -0.005 (and
   // the pre-cut's at 0). They were drawn as bonds without a break event.
@@ -261,6 +286,8 @@ TEST_CASE("bad options are input errors and write no file", "[render]") {
   refused("oblique.png", {.view = PictureView::oblique}, result);
   refused("section.png", {.section_at = 0.0}, result);  // 2-D: one section
   refused("narrow.png", {.width = 50}, result);
+  refused("negative-offset.png", {.min_offset = -1.0}, result);
+  refused("nan-offset.png", {.min_offset = std::numeric_limits<double>::quiet_NaN()}, result);
   CHECK_THROWS_AS(render_picture(result, 1, dir.file("none.png")), InputError);
   RunResult short_of_data = result;
   short_of_data.snapshots[0].displacement.pop_back();

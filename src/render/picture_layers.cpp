@@ -202,6 +202,11 @@ std::vector<LegendEntry> crack_legend(const SceneView& view) {
       entries.push_back({LegendEntry::Symbol::line, mode_colour(static_cast<std::int8_t>(mode < 3 ? mode : -1)),
                          std::string(names[mode]) + " (" + std::to_string(counts[mode]) + ")"});
   if (entries.empty()) entries.push_back({LegendEntry::Symbol::line, lattice_colour, "no broken bond"});
+  if (view.min_offset > 0) {
+    char moved[64];
+    std::snprintf(moved, sizeof moved, "moved %g m or more: ", view.min_offset);
+    entries.front().text = moved + entries.front().text;
+  }
   return entries;
 }
 

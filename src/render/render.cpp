@@ -30,6 +30,8 @@ void check_result(const RunResult& result, std::size_t index, const PictureOptio
                      " px is out of range (200 to 20000)");
   if (!std::isfinite(options.exaggeration))
     throw InputError("render: the exaggeration must be a finite number");
+  if (!(options.min_offset >= 0) || !std::isfinite(options.min_offset))
+    throw InputError("render: the least offset (--min-offset) must be 0 or more (m) and finite");
   if (options.exaggeration < 0 &&
       !(std::isfinite(result.scene.exaggeration) && result.scene.exaggeration >= 0))
     throw InputError("render: the scene's exaggeration must be a finite number >= 0");
@@ -177,7 +179,11 @@ PictureReport render_picture(const RunResult& result, std::size_t index, const s
   const SceneView view = make_view(result, snapshot, options, exaggeration);
   const FieldOnView field = field_on_view(result, snapshot, view, options.field);
   std::optional<FaultReport> faults;
-  if (options.faults) faults = analyze_faults(result, index);
+  if (options.faults) {
+    FaultOptions fault_options;
+    fault_options.min_offset = options.min_offset;
+    faults = analyze_faults(result, index, fault_options);
+  }
 
   // 2. The layout, and what it tells the caller.
   const bool oblique = view.kind == PictureView::oblique;

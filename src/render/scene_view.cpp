@@ -220,10 +220,17 @@ SceneView make_view(const RunResult& result, const Snapshot& snapshot,
   }
 
   const std::vector<std::int8_t> modes = bond_modes(result, snapshot.lambda);
+  view.min_offset = options.min_offset;
   view.touches_broken.assign(nodes, false);
   for (std::size_t bond = 0; bond < result.bond_count(); ++bond) {
     if (snapshot.bond_intact[bond] != 0) continue;
     const std::size_t a = result.bonds[2 * bond], b = result.bonds[2 * bond + 1];
+    if (options.min_offset > 0) {
+      const double* ua = &snapshot.displacement[3 * a];
+      const double* ub = &snapshot.displacement[3 * b];
+      if (!(std::hypot(ub[0] - ua[0], ub[1] - ua[1], ub[2] - ua[2]) >= options.min_offset))
+        continue;
+    }
     view.touches_broken[a] = view.touches_broken[b] = true;
     if (view.kind != PictureView::oblique && !in_slab(view, result, a, b)) continue;
     const Vec3 middle{(deformed[a][0] + deformed[b][0]) / 2, (deformed[a][1] + deformed[b][1]) / 2,

@@ -52,6 +52,7 @@ struct SceneView {
   double h_min = 0, h_max = 1, v_min = 0, v_max = 1;  // m, padded
   double spacing = 1;                     // m
   double exaggeration = 1;
+  double min_offset = 0;                  // m: broken bonds that moved less are not drawn
   std::string h_title, v_title;           // axis titles ("" for none)
   std::string where;                      // for the title: "section y = 4.5 km", ""
   Vec3 box_low{}, box_high{};             // the deformed lattice's bounding box, m

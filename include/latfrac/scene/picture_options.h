@@ -51,6 +51,9 @@ struct PictureOptions {
   std::optional<double> section_at{};
   int width = 1600;          // pixels (points for SVG and PDF)
   double exaggeration = -1;  // displacement magnification; < 0: the scene's
+  // m: draw only the broken bonds whose nodes moved apart by at least this (|u_j - u_i|
+  // at the snapshot; render --min-offset), and analyse only those for the faults; 0: all.
+  double min_offset = 0;
 };
 
 // The names used on the command line and in problem files, in enumeration order.
