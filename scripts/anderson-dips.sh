@@ -4,7 +4,10 @@
 # friction angle phi and lattice seed, with the intact bonds' internal friction and the
 # contacts' friction both tan(phi) and the criterion's psi = phi, and prints per run the
 # graben's two dips against Anderson's 45 + phi/2 and the share of broken bonds outside
-# its faults; then per phi and spacing the mean dip over the seeds with its spread.
+# its faults, and what moves: the fault that carries most of the relative motion among the
+# bonds that moved by a twentieth of the base's gap (lambda Lx) or more, its dip and its
+# mean opening against that gap (docs/fault-analysis.md, "Offsets: what moves"); then per
+# phi and spacing the mean dip over the seeds with its spread.
 #
 #   bash scripts/anderson-dips.sh [build-dir] [work-dir]
 #
@@ -35,8 +38,8 @@ lx=$("$latfrac" check "$problem" 2>/dev/null | awk '$1 == "size" {gsub(/[\[\],]/
 
 rows=$out/rows.tsv
 : > "$rows"
-echo "| phi deg | Anderson dip | spacing m | seed | broken | graben dips (dips to) | off Anderson deg | share outside the graben's faults | wall s |"
-echo "|---|---|---|---|---|---|---|---|---|"
+echo "| phi deg | Anderson dip | spacing m | seed | broken | graben dips (dips to) | off Anderson deg | share outside the graben's faults | what moves: dip, opening / gap, share of the motion | wall s |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
 for spacing in $spacings; do
   for phi in $phis; do
     mu=$(python3 -c "import math; print(f'{math.tan(math.radians($phi)):.6f}')")
@@ -48,14 +51,26 @@ for spacing in $spacings; do
         --set loading.basal_discontinuity="$x_d" --set strength.friction_angle="$phi" \
         --set strength.internal_friction="$mu" --set contact.friction="$mu" \
         --set 'output.snapshots=[]' "${extra[@]}"; then
-        echo "| $phi | | $spacing | $seed | the run failed (its message above) | | | | |"
+        echo "| $phi | | $spacing | $seed | the run failed (its message above) | | | | | |"
         continue
       fi
       "$latfrac" analyze --json "$out/$id"/*.h5 > "$out/$id.json"
-      python3 - "$out/$id.json" "$phi" "$spacing" "$seed" "$rows" <<'EOF'
+      gap=$(python3 -c "import json, sys; print(json.load(open(sys.argv[1]))['final_lambda'] * $lx)" "$out/$id.json")
+      "$latfrac" analyze --json --min-offset "$(python3 -c "print(abs($gap) / 20)")" "$out/$id"/*.h5 \
+        > "$out/$id.moved.json"
+      python3 - "$out/$id.json" "$phi" "$spacing" "$seed" "$rows" "$out/$id.moved.json" "$gap" <<'EOF'
 import json, sys
-path, phi, spacing, seed, rows = sys.argv[1:]
+path, phi, spacing, seed, rows, moved_path, gap = sys.argv[1:]
 d = json.load(open(path))
+moved = json.load(open(moved_path))["faults"]["faults"]
+gap = abs(float(gap))
+if moved:
+    m = max(moved, key=lambda x: x["motion_share"])
+    side = {1: "+x", -1: "-x"}.get(m["dip_direction"], "-")
+    moves = f"{m['dip_deg']:.1f} ({side}), {m['opening_m']:.0f} / {gap:.0f} m, {m['motion_share']:.2f}"
+else:
+    moves = "nothing moved that far"
+
 f = d["faults"]
 anderson = 45 + float(phi) / 2
 broken = f["broken_bonds"]
@@ -66,12 +81,12 @@ if g:
     off = max(abs(dip - anderson) for dip, _ in dips)
     text = " / ".join(f"{dip:.1f} ({side})" for dip, side in dips)
     print(f"| {phi} | {anderson:.1f} | {spacing} | {seed} | {broken} | {text} | {off:.1f} | "
-          f"{outside:.2f} | {d['wall_seconds']:.0f} |")
+          f"{outside:.2f} | {moves} | {d['wall_seconds']:.0f} |")
     with open(rows, "a") as r:
         r.write(f"{phi}\t{spacing}\t{seed}\t{dips[0][0]}\t{dips[1][0]}\t{outside}\n")
 else:
     print(f"| {phi} | {anderson:.1f} | {spacing} | {seed} | {broken} | no graben | - | 1.00 | "
-          f"{d['wall_seconds']:.0f} |")
+          f"{moves} | {d['wall_seconds']:.0f} |")
     with open(rows, "a") as r:
         r.write(f"{phi}\t{spacing}\t{seed}\tnan\tnan\t1\n")
 EOF

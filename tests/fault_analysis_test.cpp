@@ -656,3 +656,36 @@ TEST_CASE("The motion's shares, and min_offset keeps the bonds that moved", "[an
     CHECK_THROWS_AS(analyze_faults(result, kLastSnapshot, moving), InputError);
   }
 }
+
+TEST_CASE("In 3-D a fault's offsets split into opening, dip-slip and strike-slip", "[analysis]") {
+  // A plane dipping 50 deg towards the azimuth 30 deg (from +x towards +y); its hanging
+  // wall moves 2 m down the dip (the steepest descent in the plane), 1.5 m along the strike
+  // and 0.3 m apart. Slip is the length of the in-plane part, dip-slip its down-dip part.
+  const double dip = 50 * kDegree, azimuth = 30 * kDegree;
+  const Xyz normal{std::sin(dip) * std::cos(azimuth), std::sin(dip) * std::sin(azimuth),
+                   std::cos(dip)};
+  const Xyz down{std::cos(dip) * std::cos(azimuth), std::cos(dip) * std::sin(azimuth),
+                 -std::sin(dip)};
+  const Xyz strike{-std::sin(azimuth), std::cos(azimuth), 0};
+  Xyz shift;
+  for (int c = 0; c < 3; ++c) shift[c] = 2.0 * down[c] + 1.5 * strike[c] + 0.3 * normal[c];
+  RunResult result = cubic();
+  const auto broken = cut_and_shift(
+      result,
+      [&](const Xyz& p) {
+        return (p[0] - 7.3) * normal[0] + (p[1] - 7.6) * normal[1] + (p[2] - 7.4) * normal[2];
+      },
+      shift);
+  const FaultReport report = analyze_faults(result);
+
+  REQUIRE(report.faults.size() == 1);
+  const Fault& fault = report.faults[0];
+  CHECK(fault.bonds == static_cast<std::int64_t>(broken.size()));
+  CHECK(std::abs(fault.dip_deg - 50) < kDipToleranceDeg);
+  // Within |shift| sin(1 deg) for a plane fitted within a degree.
+  const double tolerance = std::hypot(2.0, 1.5, 0.3) * std::sin(kDipToleranceDeg * kDegree);
+  CHECK(fault.dip_slip == Approx(2.0).margin(tolerance));
+  CHECK(fault.slip == Approx(2.5).margin(tolerance));
+  CHECK(fault.opening == Approx(0.3).margin(tolerance));
+  CHECK(fault.motion_share == Approx(1.0).epsilon(1e-12));
+}
