@@ -292,6 +292,11 @@ TEST_CASE("JSON writes non-finite numbers as null and parses", "[analysis]") {
   CHECK(json.find("\"dip_deg\": null") != std::string::npos);
   CHECK(json.find("\"surface_subsidence\": null") != std::string::npos);
   CHECK(json.find("\"diffuse\": true") != std::string::npos);
+  // The text says a subsidence it could not measure in words, not "nan".
+  report.graben = 0;
+  const std::string text = to_text(report);
+  CHECK(text.find("subsidence not measured") != std::string::npos);
+  CHECK(text.find("nan\n") == std::string::npos);
 }
 
 TEST_CASE("Two faults meeting in a V at depth are split and bound a graben", "[analysis]") {
@@ -616,6 +621,8 @@ TEST_CASE("A reverse fault's dip-slip is negative, an opening crack's has none",
     const std::string json = to_json(report);
     check_json_shape(json);
     CHECK(json.find("\"dip_slip_m\": null") != std::string::npos);
+    const std::string text = to_text(report);
+    CHECK(text.find("nan") == std::string::npos);  // "-" where there is no dip-slip
   }
 }
 

@@ -57,6 +57,12 @@ double graben_motion_share(const FaultReport& report) {
 
 namespace {
 
+// "622.8 m", or "not measured" when a side of the graben has no surface node (NaN).
+std::string subsidence_text(const Graben& graben) {
+  if (!std::isfinite(graben.surface_subsidence)) return "not measured (no surface node on a side)";
+  return format("%.5g m", graben.surface_subsidence);
+}
+
 // "2 (dips to +x, dip 60.3, alpha 29.7)": a fault by its table number.
 std::string fault_text(const FaultReport& report, std::size_t f) {
   const Fault& fault = report.faults[f];
@@ -70,12 +76,11 @@ std::string roles_text(const FaultReport& report) {
   if (report.graben) {
     const Graben& graben = report.grabens[*report.graben];
     text += "faults " + fault_text(report, graben.left_fault) + " and " +
-            fault_text(report, graben.right_fault) +
+            fault_text(report, graben.right_fault) + "; subsidence " + subsidence_text(graben) +
             format(
-                "; subsidence %.5g m; %.0f %% of the broken bonds outside these two, "
+                "; %.0f %% of the broken bonds outside these two, "
                 "%.0f %% of the relative motion on them\n",
-                graben.surface_subsidence, 100 * share_outside_graben(report),
-                100 * graben_motion_share(report));
+                100 * share_outside_graben(report), 100 * graben_motion_share(report));
   } else {
     text += "none\n";
   }
@@ -161,8 +166,10 @@ std::string to_text(const FaultReport& report) {
                    dip_direction_text(fault.dip_direction).c_str(), fault.extent, fault.fit_rms,
                    fault.centroid[0]);
     if (three_d) text += format(" %11.5g", fault.centroid[1]);
-    text += format(" %11.5g %9.3g %9.3g %9.3g %6.0f%%", fault.centroid[2], fault.opening,
-                   fault.slip, fault.dip_slip, 100 * fault.motion_share);
+    text += format(" %11.5g %9.3g %9.3g", fault.centroid[2], fault.opening, fault.slip);
+    // No dip-slip on a vertical or horizontal fault (NaN): "-", as its side is.
+    text += std::isfinite(fault.dip_slip) ? format(" %9.3g", fault.dip_slip) : format(" %9s", "-");
+    text += format(" %6.0f%%", 100 * fault.motion_share);
     if (fault.diffuse)
       text += format("  diffuse (variance ratio %.2f, rms %.3g m, fill share %.2f): not a fault",
                      fault.variance_ratio, fault.fit_rms, fault.fill_share);
@@ -174,9 +181,11 @@ std::string to_text(const FaultReport& report) {
   text += format("%6s %6s %13s %13s %13s %15s\n", "left", "right", "left x m", "right x m",
                  "apex depth m", "subsidence m");
   for (const Graben& graben : report.grabens) {
-    text += format("%6zu %6zu %13.5g %13.5g %13.5g %15.5g\n", graben.left_fault + 1,
-                   graben.right_fault + 1, graben.left_surface_x, graben.right_surface_x,
-                   graben.apex_depth, graben.surface_subsidence);
+    text += format(
+        "%6zu %6zu %13.5g %13.5g %13.5g %15s\n", graben.left_fault + 1, graben.right_fault + 1,
+        graben.left_surface_x, graben.right_surface_x, graben.apex_depth,
+        std::isfinite(graben.surface_subsidence) ? format("%.5g", graben.surface_subsidence).c_str()
+                                                 : "-");
   }
   return text + roles_text(report);
 }
