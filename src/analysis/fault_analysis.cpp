@@ -87,11 +87,6 @@ Point node_position(const RunResult& result, std::int64_t node) {
           result.positions[3 * node + 2]};
 }
 
-Point node_displacement(const Snapshot& snapshot, std::int64_t node) {
-  return {snapshot.displacement[3 * node], snapshot.displacement[3 * node + 1],
-          snapshot.displacement[3 * node + 2]};
-}
-
 // A broken bond analysed: its reference vector X_j - X_i and its relative displacement
 // u_j - u_i at the snapshot, m.
 struct BondMotion {
@@ -189,8 +184,9 @@ FaultReport analyze_faults(const RunResult& result, std::size_t index,
       continue;
     }
     ++report.broken_bonds;
+    const std::array<double, 3> offset = result.bond_offset(snapshot, b);
     const BondMotion motion{node_position(result, j) - node_position(result, i),
-                            node_displacement(snapshot, j) - node_displacement(snapshot, i)};
+                            Point(offset[0], offset[1], offset[2])};
     if (!(motion.relative.norm() >= options.min_offset)) continue;
     broken.push_back(static_cast<std::int64_t>(b));
     motions.push_back(motion);

@@ -226,10 +226,8 @@ SceneView make_view(const RunResult& result, const Snapshot& snapshot,
     if (snapshot.bond_intact[bond] != 0) continue;
     const std::size_t a = result.bonds[2 * bond], b = result.bonds[2 * bond + 1];
     if (options.min_offset > 0) {
-      const double* ua = &snapshot.displacement[3 * a];
-      const double* ub = &snapshot.displacement[3 * b];
-      if (!(std::hypot(ub[0] - ua[0], ub[1] - ua[1], ub[2] - ua[2]) >= options.min_offset))
-        continue;
+      const auto [dx, dy, dz] = result.bond_offset(snapshot, bond);
+      if (!(std::hypot(dx, dy, dz) >= options.min_offset)) continue;
     }
     view.touches_broken[a] = view.touches_broken[b] = true;
     if (view.kind != PictureView::oblique && !in_slab(view, result, a, b)) continue;

@@ -121,6 +121,15 @@ struct RunResult {
     const std::array<double, 3> e = extents();
     return std::max({e[0], e[1], e[2]});
   }
+  // Bond b's offset in the snapshot: u_j - u_i, its second node's displacement less its
+  // first's (x, y, z), m. The fault analysis and the pictures' --min-offset read it.
+  std::array<double, 3> bond_offset(const Snapshot& snapshot, std::size_t b) const {
+    const std::size_t i = 3 * static_cast<std::size_t>(bonds[2 * b]);
+    const std::size_t j = 3 * static_cast<std::size_t>(bonds[2 * b + 1]);
+    return {snapshot.displacement[j] - snapshot.displacement[i],
+            snapshot.displacement[j + 1] - snapshot.displacement[i + 1],
+            snapshot.displacement[j + 2] - snapshot.displacement[i + 2]};
+  }
   // Its smallest extent over the axes it spans (x and z in 2-D), m (0 without nodes): a
   // motion beyond it is beyond small strain, however long the body is.
   double smallest_extent() const {
