@@ -262,6 +262,19 @@ TEST_CASE("contact.friction_facets: 3 to 64 facets, in 3-D, with friction", "[io
              Contains("contact.friction_facets: has no effect in 2-D"));
 }
 
+TEST_CASE("contact.normal: along the bond (default) or across the crack", "[io]") {
+  CHECK(parse_problem(minimal + "[contact]\n", "t.toml", {}).contact->normal ==
+        latfrac::Contact::Normal::bond);
+  CHECK(parse_problem(minimal + "[contact]\nnormal = \"crack\"\n", "t.toml", {}).contact->normal ==
+        latfrac::Contact::Normal::crack);
+  CHECK(parse_problem(minimal + "[contact]\nnormal = \"bond\"\n", "t.toml", {}).contact->normal ==
+        latfrac::Contact::Normal::bond);
+  CHECK_THAT(error_of(minimal + "[contact]\nnormal = \"plane\"\n"),
+             Contains("contact.normal: ") && Contains("bond") && Contains("crack"));
+  CHECK_THAT(error_of(minimal + "[contact]\nenabled = false\nnormal = \"crack\"\n"),
+             Contains("contact.normal: has no effect: contact.enabled is false"));
+}
+
 TEST_CASE("nan and inf are rejected", "[io]") {
   CHECK(error_of(with(minimal, "spacing = 500", "spacing = nan")) ==
         "t.toml:4: lattice.spacing: must be finite, got nan; allowed: spacing > 0 (m)");

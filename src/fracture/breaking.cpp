@@ -1,6 +1,10 @@
 // Breaking one bond, a tied group, and a cascade at one lambda.
 #include "latfrac/fracture/breaking.h"
 
+#include "latfrac/criteria/crack_plane.h"
+#include "latfrac/criteria/failure_evaluator.h"
+#include "latfrac/mechanics/node_stress.h"
+
 namespace latfrac {
 
 void Breaking::break_bond(std::int64_t bond, const FailureIndex& failure, double lambda,
@@ -9,9 +13,20 @@ void Breaking::break_bond(std::int64_t bond, const FailureIndex& failure, double
   const Vector u = equilibrium_.displacement(lambda);
   result_.events.push_back({lambda, bond, failure.value, failure.mode, cascade_id});
   ++breaks_;
+  // With contacts along cracks, the crack's plane from the stress the bond failed under
+  // (the criterion's reading: the mean of its two nodes' stresses).
+  if (model.contacts_along_cracks() && model.can_touch(bond)) {
+    const Bond& pair = model.lattice.bonds[bond];
+    const VoigtStress s = bond_stress_tensor(node_stresses_at(model, u, {pair.i, pair.j}), pair);
+    Mat3 stress;
+    stress << s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2];
+    equilibrium_.set_contact_normal(
+        bond, crack_plane_normal(stress, model.lattice.bond_direction[bond], failure.mode,
+                                 model.crack_friction_angle, model.dim()));
+  }
   // A bond that breaks in compression becomes a closed contact at once.
   const bool closes = model.can_touch(bond) &&
-                      model.lattice.bond_direction[bond].dot(model.bond_displacement(u, bond)) < 0;
+                      model.contact_direction(bond).dot(model.bond_displacement(u, bond)) < 0;
   equilibrium_.change_pairs({{bond, closes ? PairState::closed : PairState::open}}, lambda, u);
   settling_.settle(lambda);
   progress_.update(lambda, breaks_);

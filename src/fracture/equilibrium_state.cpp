@@ -159,7 +159,7 @@ void EquilibriumState::change_pairs(const std::vector<PairChange>& changes, doub
     if (model_.has_friction() && model_.can_touch(change.bond)) {
       solver_.set_contact_memory(
           change.bond, model_.contact_law()->entered(
-                           model_.springs(change.bond), state, change.state,
+                           model_.contact_springs(change.bond), state, change.state,
                            model_.bond_displacement(before, change.bond), change.direction));
     }
     solver_.set_pair_state(change.bond, change.state);

@@ -77,6 +77,8 @@ void FractureRun::save_checkpoint(double lambda, std::int64_t next_step,
                                       m.slip_direction.y(), m.slip_direction.z(), m.normal, m.slip,
                                       m.work});
   }
+  for (const Vec3& n : model_.contact_normal)
+    checkpoint.contact_normals.insert(checkpoint.contact_normals.end(), {n.x(), n.y(), n.z()});
   checkpoint.free_index = model_.dofs().free_index;
   checkpoint.prescribed_base = model_.dofs().prescribed_base;
   checkpoint.prescribed_rate = model_.dofs().prescribed_rate;

@@ -78,6 +78,10 @@ void write_checkpoint_group(hid_t file, const RunCheckpoint& c) {
     hdf5::write_dataset(file, group + "/contact_memory", c.contact_memory,
                         {c.pair_states.size(), RunCheckpoint::memory_values});
   }
+  if (!c.contact_normals.empty()) {
+    hdf5::write_dataset(file, group + "/contact_normal", c.contact_normals,
+                        {c.pair_states.size(), 3});
+  }
   hdf5::write_dataset(file, group + "/free_index", c.free_index, {c.free_index.size()});
   hdf5::write_dataset(file, group + "/prescribed_base", c.prescribed_base,
                       {c.prescribed_base.size()});
@@ -267,6 +271,8 @@ RunCheckpoint read_checkpoint_group(hid_t file) {
     c.contact_memory = hdf5::read_dataset<double>(file, group + "/contact_memory",
                                                   {bonds, RunCheckpoint::memory_values});
   }
+  if (hdf5::exists(file, group + "/contact_normal"))
+    c.contact_normals = hdf5::read_dataset<double>(file, group + "/contact_normal", {bonds, 3});
   c.free_index = hdf5::read_dataset<std::int64_t>(file, group + "/free_index", {dofs});
   c.prescribed_base = hdf5::read_dataset<double>(file, group + "/prescribed_base", {dofs});
   c.prescribed_rate = hdf5::read_dataset<double>(file, group + "/prescribed_rate", {dofs});

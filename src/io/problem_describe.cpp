@@ -194,6 +194,11 @@ std::string describe(const Scene& scene) {
                 "(facets of the polygon inscribed in Coulomb's circle: strength between " +
                     format_number(std::cos(std::numbers::pi / scene.contact->friction_facets)) +
                     " mu |Fn| and mu |Fn| by direction)");
+    out.entry("normal", scene.contact->normal == Contact::Normal::crack ? "crack" : "bond",
+              scene.contact->normal == Contact::Normal::crack
+                  ? "(a broken bond's contact acts across its crack's plane: a pre-cut's, or "
+                    "the one its failure picks)"
+                  : "(a broken bond's contact acts along the bond)");
   } else {
     out.off("contact");
   }

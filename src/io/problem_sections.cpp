@@ -299,7 +299,7 @@ void read_effects(const Section& top, Scene& scene) {
       scene.gravity->overburden = *overburden;
     }
   }
-  if (const auto s = top.section("contact", {"enabled", "friction", "friction_facets"})) {
+  if (const auto s = top.section("contact", {"enabled", "friction", "friction_facets", "normal"})) {
     // At most 100: a friction angle of 89.4 deg, stick under any practical load. Far above
     // it the solves fail: on the complete 2-D scene at 3000 m, mu = 1e4 ran, mu = 1e8 ended
     // at lambda 8.4e-4 with a residual of 1.3e-9 of the load after a fresh factorization.
@@ -322,6 +322,12 @@ void read_effects(const Section& top, Scene& scene) {
         s->fail("friction_facets", "has no effect without friction (contact.friction is 0)",
                 "allowed: contact.friction > 0, or remove friction_facets");
       scene.contact->friction_facets = static_cast<int>(*facets);
+    }
+    if (const auto normal = s->choice("normal", {"bond", "crack"})) {
+      if (!scene.contact)
+        s->fail("normal", "has no effect: contact.enabled is false",
+                "allowed: contact.enabled = true, or remove normal");
+      scene.contact->normal = static_cast<Contact::Normal>(*normal);
     }
   }
   if (const auto s = top.section("large_kinematics", {"enabled"})) {

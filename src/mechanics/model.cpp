@@ -1,6 +1,7 @@
 // The forces of a model (internal forces, residuals, reactions) and the editor of its states.
 #include "latfrac/mechanics/model.h"
 
+#include "latfrac/base/error.h"
 #include "latfrac/base/threads.h"
 
 namespace latfrac {
@@ -132,6 +133,14 @@ void ModelEditor::set_laws(std::unique_ptr<BondLaw> bond_law,
   model_.contact_law_ = std::move(contact_law);
   model_.memory_.clear();
   if (model_.has_friction()) model_.memory_.resize(model_.lattice.bond_count());
+}
+
+void ModelEditor::set_contact_normal(std::int64_t bond, const Vec3& normal) {
+  if (!model_.contacts_along_cracks() || !model_.intact(bond))
+    throw Error(
+        "a contact's normal is set on a scene with contacts along cracks, before its "
+        "bond breaks");
+  model_.contact_normal[bond] = normal;
 }
 
 void ModelEditor::reset_states() {

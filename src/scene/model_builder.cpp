@@ -1,9 +1,11 @@
 // Builds the mechanical model of a scene: lattice, springs, strengths, supports, gravity.
 #include "latfrac/scene/model_builder.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <random>
 #include <sstream>
@@ -40,6 +42,29 @@ const Material& material_at(const Scene& scene, double z) {
 // "Friction on closed contacts"); where ks = 0 its tangential force stays 0, so friction
 // would silently do nothing. That is the largest Poisson's ratio a lattice has: 1/4 on the
 // regular ones, random_lattice_max_poisson on random ones.
+// The friction angle of a crack's Coulomb plane (crack_plane.h), radians: the bonds'
+// internal friction where they have it, else the criterion's psi, else 0 (45 degrees).
+double crack_friction_angle(const Scene& scene) {
+  if (!scene.strength) return 0;
+  if (scene.strength->internal_friction > 0) return std::atan(scene.strength->internal_friction);
+  if (scene.strength->friction_angle)
+    return *scene.strength->friction_angle * std::numbers::pi / 180;
+  return 0;
+}
+
+// A pre-cut's unit normal: 2-D, the segment turned a quarter in the x-z plane; 3-D,
+// edge1 x edge2. (A cut of zero length or area severs no bond, precut.h, so its normal is
+// never read.)
+Vec3 precut_normal(const Precut& cut, int dim) {
+  if (dim == 2) {
+    const Vec3 t(cut.to[0] - cut.from[0], 0, cut.to[2] - cut.from[2]);
+    return Vec3(t.z(), 0, -t.x()).normalized();
+  }
+  const Vec3 e1(cut.edge1[0], cut.edge1[1], cut.edge1[2]),
+      e2(cut.edge2[0], cut.edge2[1], cut.edge2[2]);
+  return e1.cross(e2).normalized();
+}
+
 void check_stick_springs(const Scene& scene, const Model& model) {
   const Lattice& lattice = model.lattice;
   for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
@@ -293,6 +318,15 @@ Model build_model(const Scene& scene, const FailureCriterion* criterion) {
   for (std::int64_t b : bonds_crossing_precuts(lattice, scene.precuts)) {
     model.precut[b] = 1;
     editor.set_state(b, PairState::open);
+  }
+  if (scene.contact && scene.contact->normal == Contact::Normal::crack) {
+    model.contact_normal = lattice.bond_direction;
+    model.crack_friction_angle = crack_friction_angle(scene);
+    for (const Precut& cut : scene.precuts) {
+      const Vec3 n = precut_normal(cut, dim);
+      for (std::int64_t b : bonds_crossing_precuts(lattice, {cut}))
+        model.contact_normal[b] = n.dot(lattice.bond_direction[b]) >= 0 ? n : Vec3(-n);
+    }
   }
 
   editor.set_dofs(build_dof_map(lattice, scene.faces, scene.loading.basal_discontinuity));

@@ -98,6 +98,20 @@ void restore_model(Model& model, const RunCheckpoint& checkpoint, const std::str
     editor.set_memory(static_cast<std::int64_t>(b),
                       {Vec3(v[0], v[1], v[2]), Vec3(v[3], v[4], v[5]), v[6], v[7], v[8]});
   }
+  // Contacts along cracks: the normals the run's breaks chose (a pre-cut's come from the
+  // problem; the checkpoint has them too).
+  if (model.contacts_along_cracks() != !checkpoint.contact_normals.empty() ||
+      (model.contacts_along_cracks() && checkpoint.contact_normals.size() != bonds * 3))
+    throw InputError(source + ": the checkpoint's contact normals do not fit this problem's " +
+                     "contact.normal");
+  for (std::size_t b = 0; b < bonds && model.contacts_along_cracks(); ++b) {
+    const double* v = &checkpoint.contact_normals[b * 3];
+    const Vec3 n(v[0], v[1], v[2]);
+    if (!(std::abs(n.norm() - 1) < 1e-9))
+      throw InputError(source + ": the checkpoint's contact normal of bond " + std::to_string(b) +
+                       " is not a unit vector (the result file is damaged or was edited)");
+    model.contact_normal[b] = n;
+  }
   DofMap map;
   map.dim = model.dim();
   map.free_index = checkpoint.free_index;

@@ -365,15 +365,16 @@ void EquilibriumSolver::set_pair_state(std::int64_t bond, PairState state) {
   const Mat3 jacobian_before = lu_current_ ? pair_jacobian(bond) : Mat3::Zero();
   if (factor_current_)
     changes_since_factorization_.push_back({bond, static_cast<std::uint8_t>(state)});
-  const PairSprings springs = model_.springs(bond);
+  // The springs in each state: a bond that breaks leaves its direction for its contact's.
   const InteractionLaw* old_law = model_.law_of(bond);
   std::vector<RankOneTerm> removed =
-      old_law ? old_law->stiffness_terms(springs, model_.state(bond)) : std::vector<RankOneTerm>{};
+      old_law ? old_law->stiffness_terms(model_.springs(bond), model_.state(bond))
+              : std::vector<RankOneTerm>{};
   editor_.set_state(bond, state);
   note_lu_change(bond, jacobian_before);
   const InteractionLaw* new_law = model_.law_of(bond);
   std::vector<RankOneTerm> added =
-      new_law ? new_law->stiffness_terms(springs, state) : std::vector<RankOneTerm>{};
+      new_law ? new_law->stiffness_terms(model_.springs(bond), state) : std::vector<RankOneTerm>{};
   // A term the pair keeps (the normal spring of a bond that breaks into a closed contact)
   // is neither removed nor added: one update instead of two, and no rounding from a
   // downdate and update that cancel.

@@ -68,6 +68,10 @@ class EquilibriumState {
   // carried along again: each commit closes a stretch of affine path, or the jump at
   // lambda that a change makes (whose work the trapezoidal rule in dn approximates).
   void change_pairs(const std::vector<PairChange>& changes, double lambda, const Vector& before);
+  // Before bond b breaks (contacts along cracks): the normal its contact will act along.
+  void set_contact_normal(std::int64_t bond, const Vec3& normal) {
+    solver_.set_contact_normal(bond, normal);
+  }
   // Event-driven runs read the affine path after every change: then each change solves for
   // the path at once and takes the state on it (one solve with two load columns instead
   // of one for the state and one for the path).

@@ -51,6 +51,9 @@ struct RunCheckpoint {
   // direction (3), normal, slip, work; empty without friction.
   std::vector<double> contact_memory;
   static constexpr int memory_values = 9;
+  // With contacts along cracks (contact.normal = "crack"), per bond the normal its contact
+  // acts along (3 values); empty otherwise.
+  std::vector<double> contact_normals;
   // The supports (mechanics/supports.h): per dof, free index or -1, base and rate.
   std::vector<std::int64_t> free_index;
   std::vector<double> prescribed_base, prescribed_rate;

@@ -44,6 +44,13 @@ class Model {
   // A pressure on the top face (Pa; gravity.overburden): each top face piece of a random
   // lattice carries -p A e_z at its centroid, in external_force and in the node stresses.
   double top_pressure = 0;
+  // Which way a broken bond's contact acts (docs/model.md, section 8): empty, along the
+  // bond (the paper's model); otherwise per bond the unit normal of its crack's plane
+  // (contact.normal = "crack", criteria/crack_plane.h), oriented from i to j: a pre-cut's
+  // normal from the start, a bond broken in the run the one its failure picked (set by
+  // ModelEditor::set_contact_normal while it is still intact), else the bond's direction.
+  std::vector<Vec3> contact_normal;
+  double crack_friction_angle = 0;  // phi of the crack's Coulomb plane, radians
 
   int dim() const { return lattice.dim; }
   const DofMap& dofs() const { return dofs_; }
@@ -78,11 +85,21 @@ class Model {
     if (intact(bond)) return bond_law_.get();
     return contact_capable(bond) ? contact_law_.get() : nullptr;
   }
-  // Bond b's reference geometry and springs (and its memory, with friction).
+  // Bond b's reference geometry and springs (and its memory, with friction), in its
+  // state: an intact bond along its direction, a broken one along its contact's.
   PairSprings springs(std::int64_t bond) const {
-    return {lattice.bond_direction[bond], lattice.bond_length[bond], normal_stiffness[bond],
-            shear_stiffness[bond], memory_.empty() ? nullptr : &memory_[bond]};
+    return intact(bond) ? springs_along(bond, lattice.bond_direction[bond]) : contact_springs(bond);
   }
+  // The springs of bond b's contact, whatever its state (for entering it).
+  PairSprings contact_springs(std::int64_t bond) const {
+    return springs_along(bond, contact_direction(bond));
+  }
+  // The unit normal bond b's contact acts along (n . du, its opening).
+  const Vec3& contact_direction(std::int64_t bond) const {
+    return contact_normal.empty() ? lattice.bond_direction[bond] : contact_normal[bond];
+  }
+  // Whether a bond's contact acts across its crack's plane (contact.normal = "crack").
+  bool contacts_along_cracks() const { return !contact_normal.empty(); }
   bool has_prestress() const { return !prestretch.empty(); }
   // True when every law is linear (paths between events are affine).
   bool is_linear() const { return bond_law_->is_linear(); }
@@ -135,6 +152,10 @@ class Model {
   std::unique_ptr<InteractionLaw> contact_law_;  // null without contact
   std::vector<ContactMemory> memory_;            // per bond with friction, else empty
   mutable NodeBonds node_bonds_;                 // a cache of node_bonds(lattice)
+  PairSprings springs_along(std::int64_t bond, const Vec3& direction) const {
+    return {direction, lattice.bond_length[bond], normal_stiffness[bond], shear_stiffness[bond],
+            memory_.empty() ? nullptr : &memory_[bond]};
+  }
 };
 
 // The one way to change what a model's run changes (its pair states and supports) and
@@ -147,6 +168,9 @@ class ModelEditor {
   // contact_law: a ContactLaw, a FrictionalContactLaw, or null (no contact).
   void set_laws(std::unique_ptr<BondLaw> bond_law, std::unique_ptr<InteractionLaw> contact_law);
   void set_memory(std::int64_t bond, const ContactMemory& memory) { model_.memory_[bond] = memory; }
+  // The normal bond b's contact will act along (contacts along cracks only): set while the
+  // bond is intact, so that no factor holds the old one.
+  void set_contact_normal(std::int64_t bond, const Vec3& normal);
   // Every bond intact.
   void reset_states();
   void set_state(std::int64_t bond, PairState state) { model_.states_[bond] = state; }

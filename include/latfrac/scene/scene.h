@@ -56,6 +56,10 @@ struct Contact {
   double friction = 0;  // Coulomb's mu on closed contacts (0: frictionless), dimensionless
   // 3-D: the facets of the polygon inscribed in Coulomb's circle (friction_law.h).
   int friction_facets = 8;
+  // Which way a broken bond's contact acts: along the bond (the paper's model) or across
+  // the plane of the crack it stands for (docs/model.md, section 8).
+  enum class Normal { bond, crack };
+  Normal normal = Normal::bond;
 };
 
 // A horizontal layer z_min <= z < z_max with its own material and strength; a bond

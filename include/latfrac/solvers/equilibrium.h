@@ -72,6 +72,11 @@ class EquilibriumSolver {
   void set_pair_state(std::int64_t bond, PairState state);
   // Sets a frictional contact's memory (its anchor is a load while it sticks).
   void set_contact_memory(std::int64_t bond, const ContactMemory& memory);
+  // The normal an intact bond's contact will act along once it breaks (contacts along
+  // cracks): no factor holds it yet, so nothing else changes.
+  void set_contact_normal(std::int64_t bond, const Vec3& normal) {
+    editor_.set_contact_normal(bond, normal);
+  }
   // Holds the given nodes along the given components at the full displacement (their free
   // dofs become prescribed, rate 0); rebuilds the stiffness pattern and its analysis.
   struct Hold {
