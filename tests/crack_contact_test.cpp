@@ -6,11 +6,13 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "hard_case_checks.h"
 #include "latfrac/criteria/crack_plane.h"
 #include "latfrac/io/problem_file.h"
+#include "latfrac/scene/model_builder.h"
 #include "latfrac/scene/run.h"
 
 using namespace latfrac;
@@ -151,4 +153,47 @@ TEST_CASE(
   // stays on the footwall (docs/validation.md, "Why a rift: contacts that lock").
   const WedgeMotion bond = wedge_motion("bond");
   CHECK(std::abs(bond.wedge_dz) < 0.1 * g);
+}
+
+TEST_CASE(
+    "Contacts along cracks: a pre-cut's bonds take its plane's normal, the rest their own "
+    "direction until they break",
+    "[crack]") {
+  // 3-D: an inclined rectangle, normal edge1 x edge2 by hand; 2-D: a segment dipping 60 deg.
+  const Scene three = read_problem_file(
+      std::string(LATFRAC_PROBLEMS_DIR) + "/graben-complete-3d.toml",
+      {"lattice.spacing=5000", "contact.normal=\"crack\"",
+       "precut=[{corner=[20e3,-1e3,2e3],edge1=[0.0,12e3,0.0],edge2=[10e3,0.0,17.32e3]}]"});
+  const Scene two =
+      read_problem_file(std::string(LATFRAC_PROBLEMS_DIR) + "/graben-complete-2d.toml",
+                        {"lattice.spacing=2000", "contact.normal=\"crack\"",
+                         "precut=[{from=[30300.0,-500.0],to=[12400.0,30500.0]}]"});
+  // edge1 x edge2 = (12e3 * 17.32e3, 0, -12e3 * 10e3), normalized; the segment's normal
+  // (its direction (-17.9e3, 31e3) turned a quarter).
+  const Vec3 n3 = Vec3(17.32e3, 0, -10e3).normalized();
+  const Vec3 n2 = Vec3(31e3, 0, 17.9e3).normalized();
+  for (const auto& [scene, normal] : {std::pair{&three, n3}, std::pair{&two, n2}}) {
+    const Model model = build_model(*scene);
+    REQUIRE(model.contacts_along_cracks());
+    std::size_t cut = 0;
+    for (std::int64_t b = 0; b < model.lattice.bond_count(); ++b) {
+      const Vec3& n0 = model.lattice.bond_direction[b];
+      const Vec3& n = model.contact_direction(b);
+      if (!model.precut[b]) {
+        CHECK(n == n0);
+        continue;
+      }
+      ++cut;
+      CHECK(std::abs(std::abs(n.dot(normal)) - 1) < 1e-12);
+      CHECK(n.dot(n0) > 0);
+      CHECK(model.springs(b).direction == n);  // a cut bond is broken: its contact's springs
+    }
+    CHECK(cut > 10);
+  }
+  // Contacts along the bonds (the default): every contact acts along its bond.
+  const Model plain = build_model(read_problem_file(
+      std::string(LATFRAC_PROBLEMS_DIR) + "/graben-complete-2d.toml", {"lattice.spacing=2000"}));
+  CHECK_FALSE(plain.contacts_along_cracks());
+  for (std::int64_t b = 0; b < plain.lattice.bond_count(); ++b)
+    CHECK(&plain.contact_direction(b) == &plain.lattice.bond_direction[b]);
 }

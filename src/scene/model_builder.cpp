@@ -38,10 +38,6 @@ const Material& material_at(const Scene& scene, double z) {
   return layer ? layer->material : scene.material;
 }
 
-// A frictional contact sticks on the broken bond's own shear spring (docs/model.md,
-// "Friction on closed contacts"); where ks = 0 its tangential force stays 0, so friction
-// would silently do nothing. That is the largest Poisson's ratio a lattice has: 1/4 on the
-// regular ones, random_lattice_max_poisson on random ones.
 // The friction angle of a crack's Coulomb plane (crack_plane.h), radians: the bonds'
 // internal friction where they have it, else the criterion's psi, else 0 (45 degrees).
 double crack_friction_angle(const Scene& scene) {
@@ -65,6 +61,10 @@ Vec3 precut_normal(const Precut& cut, int dim) {
   return e1.cross(e2).normalized();
 }
 
+// A frictional contact sticks on the broken bond's own shear spring (docs/model.md,
+// "Friction on closed contacts"); where ks = 0 its tangential force stays 0, so friction
+// would silently do nothing. That is the largest Poisson's ratio a lattice has: 1/4 on the
+// regular ones, random_lattice_max_poisson on random ones.
 void check_stick_springs(const Scene& scene, const Model& model) {
   const Lattice& lattice = model.lattice;
   for (std::int64_t b = 0; b < lattice.bond_count(); ++b) {
