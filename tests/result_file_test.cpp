@@ -76,6 +76,7 @@ void require_equal(const RunResult& read, const RunResult& written) {
   CHECK(read.summary.factorizations == written.summary.factorizations);
   CHECK(read.summary.factor_updates == written.summary.factor_updates);
   CHECK(read.summary.floor_acceptances == written.summary.floor_acceptances);
+  CHECK(same_bits(read.contact_normal, written.contact_normal));
 }
 
 // The message of the Exception that call throws; fails the test if it throws nothing.
@@ -134,6 +135,14 @@ TEST_CASE("a result file reads back exactly what was written", "[io]") {
   RunResult written = sample_result();
 
   SECTION("with events and snapshots") {}
+  SECTION("with contacts along cracks: each bond's contact normal") {
+    written.contact_normal.clear();
+    for (std::size_t b = 0; b < written.bond_count(); ++b) {
+      const double angle = 0.3 + 0.7 * static_cast<double>(b);
+      written.contact_normal.insert(written.contact_normal.end(),
+                                    {std::cos(angle), 0.0, std::sin(angle)});
+    }
+  }
   SECTION("with no events and no snapshots") {
     written.events.clear();
     written.snapshots.clear();

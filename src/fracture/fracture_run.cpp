@@ -138,6 +138,9 @@ void FractureRun::start() {
 void FractureRun::finish() {
   result_.fragments.insert(result_.fragments.end(), equilibrium_.fragments().begin(),
                            equilibrium_.fragments().end());
+  result_.contact_normal.clear();
+  for (const Vec3& n : model_.contact_normal)
+    result_.contact_normal.insert(result_.contact_normal.end(), {n.x(), n.y(), n.z()});
   if (model_.has_friction()) {
     equilibrium_.commit_contacts(schedule_.total);
     const auto& memory = model_.contact_memory();

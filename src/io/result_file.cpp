@@ -205,6 +205,14 @@ void write_friction(hid_t file, const RunResult& result) {
   hdf5::write_dataset(file, "/friction/work", result.friction_work, shape);
 }
 
+// With contacts along cracks, per bond: the normal its contact acts along.
+void write_contact_normals(hid_t file, const RunResult& result) {
+  if (result.contact_normal.empty()) return;
+  hdf5::create_group(file, "/contact");
+  hdf5::write_dataset(file, "/contact/normal", result.contact_normal,
+                      {result.contact_normal.size() / 3, 3});
+}
+
 // A generous guess of the file's size, so that the in-memory file grows once.
 std::size_t estimated_bytes(const RunResult& result) {
   const std::size_t nodes = result.node_count(), bonds = result.bond_count();
@@ -267,6 +275,7 @@ void write_hdf5(const std::string& file_name, const RunResult& result,
     write_snapshots(file.get(), result);
     write_summary(file.get(), result.summary);
     write_friction(file.get(), result);
+    write_contact_normals(file.get(), result);
     if (checkpoint) write_checkpoint_group(file.get(), *checkpoint);
     hdf5::check(H5Fflush(file.get(), H5F_SCOPE_LOCAL), "H5Fflush", quoted);
     const ssize_t size = H5Fget_file_image(file.get(), nullptr, 0);
@@ -423,6 +432,8 @@ RunResult read_contents(hid_t file) {
     result.contact_slip = hdf5::read_dataset<double>(file, "/friction/slip", {bonds});
     result.friction_work = hdf5::read_dataset<double>(file, "/friction/work", {bonds});
   }
+  if (hdf5::exists(file, "/contact/normal"))
+    result.contact_normal = hdf5::read_dataset<double>(file, "/contact/normal", {bonds, 3});
   return result;
 }
 

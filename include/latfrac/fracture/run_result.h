@@ -98,6 +98,10 @@ struct RunResult {
   // With friction, per bond at the end of the run (empty without): the slip its contact
   // accumulated (m) and the work its friction dissipated (J; 2-D: J per metre).
   std::vector<double> contact_slip, friction_work;
+  // With contacts along cracks (contact.normal = "crack"), per bond at the end of the run
+  // the unit normal its contact acts along (x, y, z; the bond's direction while intact);
+  // empty otherwise.
+  std::vector<double> contact_normal;
   RunSummary summary;
 
   std::size_t node_count() const { return positions.size() / 3; }
