@@ -21,9 +21,8 @@ MohrCircle outer_circle(const VoigtStress& s, int dim) {
   if (dim == 2) {
     return {0.5 * (s[0] + s[2]), std::hypot(0.5 * (s[0] - s[2]), s[4])};
   }
-  Eigen::Matrix3d m;
-  m << s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2];
-  const Eigen::Vector3d principal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m).eigenvalues();
+  const Eigen::Vector3d principal =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(stress_matrix(s)).eigenvalues();
   return {0.5 * (principal(2) + principal(0)), 0.5 * (principal(2) - principal(0))};
 }
 

@@ -3,6 +3,12 @@
 
 namespace latfrac {
 
+Eigen::Matrix3d stress_matrix(const VoigtStress& s) {
+  Eigen::Matrix3d m;
+  m << s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2];
+  return m;
+}
+
 ResolvedStress resolve_on(const VoigtStress& s, const Eigen::Vector3d& n) {
   // Voigt xx, yy, zz, yz, xz, xy.
   const Eigen::Vector3d traction(s[0] * n.x() + s[5] * n.y() + s[4] * n.z(),

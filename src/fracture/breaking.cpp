@@ -17,9 +17,8 @@ void Breaking::break_bond(std::int64_t bond, const FailureIndex& failure, double
   // (the criterion's reading: the mean of its two nodes' stresses).
   if (model.contacts_along_cracks() && model.can_touch(bond)) {
     const Bond& pair = model.lattice.bonds[bond];
-    const VoigtStress s = bond_stress_tensor(node_stresses_at(model, u, {pair.i, pair.j}), pair);
-    Mat3 stress;
-    stress << s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2];
+    const VoigtStress stress =
+        bond_stress_tensor(node_stresses_at(model, u, {pair.i, pair.j}), pair);
     equilibrium_.set_contact_normal(
         bond, crack_plane_normal(stress, model.lattice.bond_direction[bond], failure.mode,
                                  model.crack_friction_angle, model.dim()));

@@ -102,4 +102,9 @@ std::vector<std::int64_t> bonds_crossing_precuts(const Lattice& lattice,
   return severed;
 }
 
+Vec3 precut_normal(const Precut& precut, int dim) {
+  const std::optional<Cut> cut = make_cut(precut, dim, 1.0, 0.0);
+  return cut ? cut->normal : Vec3::Zero();
+}
+
 }  // namespace latfrac

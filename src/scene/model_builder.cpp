@@ -1,7 +1,6 @@
 // Builds the mechanical model of a scene: lattice, springs, strengths, supports, gravity.
 #include "latfrac/scene/model_builder.h"
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -46,19 +45,6 @@ double crack_friction_angle(const Scene& scene) {
   if (scene.strength->friction_angle)
     return *scene.strength->friction_angle * std::numbers::pi / 180;
   return 0;
-}
-
-// A pre-cut's unit normal: 2-D, the segment turned a quarter in the x-z plane; 3-D,
-// edge1 x edge2. (A cut of zero length or area severs no bond, precut.h, so its normal is
-// never read.)
-Vec3 precut_normal(const Precut& cut, int dim) {
-  if (dim == 2) {
-    const Vec3 t(cut.to[0] - cut.from[0], 0, cut.to[2] - cut.from[2]);
-    return Vec3(t.z(), 0, -t.x()).normalized();
-  }
-  const Vec3 e1(cut.edge1[0], cut.edge1[1], cut.edge1[2]),
-      e2(cut.edge2[0], cut.edge2[1], cut.edge2[2]);
-  return e1.cross(e2).normalized();
 }
 
 // A frictional contact sticks on the broken bond's own shear spring (docs/model.md,

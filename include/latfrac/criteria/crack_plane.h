@@ -18,12 +18,12 @@
 
 namespace latfrac {
 
-// stress: the stress tensor at the bond (Pa, compression negative; in 2-D the x-z block
-// is read, y ignored); bond_direction: the bond's unit n0 from i to j; mode: how it failed
-// (tensile or shear); friction_angle: phi, radians, in [0, pi/2). dim 2 or 3. Returns a
-// unit vector with n . n0 > 0 (in 2-D, y = 0). A stress with no deviatoric part (every
-// direction principal) gives n0.
-Vec3 crack_plane_normal(const Mat3& stress, const Vec3& bond_direction, BreakMode mode,
+// stress: the stress at the bond (Voigt, Pa, compression negative; in 2-D the x-z
+// components are read: the in-plane principal stresses); bond_direction: the bond's unit n0 from i
+// to j; mode: how it failed (tensile or shear); friction_angle: phi, radians, in [0, pi/2). dim 2
+// or 3. Returns a unit vector with n . n0 > 0 (in 2-D, y = 0). A stress with no deviatoric part
+// (every direction principal) gives n0.
+Vec3 crack_plane_normal(const VoigtStress& stress, const Vec3& bond_direction, BreakMode mode,
                         double friction_angle, int dim);
 
 }  // namespace latfrac

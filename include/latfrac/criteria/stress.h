@@ -26,6 +26,8 @@ struct ResolvedStress {
   Eigen::Vector3d shear = Eigen::Vector3d::Zero();
 };
 ResolvedStress resolve_on(const VoigtStress& stress, const Eigen::Vector3d& n);
+// The symmetric 3 x 3 matrix of a Voigt stress.
+Eigen::Matrix3d stress_matrix(const VoigtStress& stress);
 
 // I1 = trace.
 double first_invariant(const VoigtStress& stress);

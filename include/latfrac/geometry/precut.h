@@ -31,6 +31,10 @@ struct Precut {
   std::array<double, 3> corner{0, 0, 0}, edge1{0, 0, 0}, edge2{0, 0, 0};  // 3-D, m
 };
 
+// The unit normal of a pre-cut's line (2-D, in the x-z plane) or plane (3-D): the one the
+// crossing rule uses. Zero for a degenerate cut (zero length or area), which cuts nothing.
+Vec3 precut_normal(const Precut& precut, int dim);
+
 // Ids of the bonds whose segment [X_i, X_j] crosses any pre-cut (sorted, unique).
 // The lattice's dim chooses the reading of each Precut (from/to or corner/edges).
 std::vector<std::int64_t> bonds_crossing_precuts(const Lattice& lattice,
